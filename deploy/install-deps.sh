@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Installs exactly the Debian 12 packages that sadr needs to build, test and run.
+# Idempotent: packages already present are skipped, and apt is not touched at all
+# when nothing is missing. Run as root (or with sudo available).
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config          # toolchain (g++ 12, CMake 3.25)
+  libzmq3-dev cppzmq-dev                    # transport between the three processes
+  libprotobuf-dev protobuf-compiler         # wire protocol v1 (proto/)
+  libeigen3-dev                             # small dense/sparse linear algebra
+  libboost-graph-dev                        # diffusion graph (compressed_sparse_row_graph)
+  libgtest-dev libgmock-dev                 # tests
+  libbenchmark-dev                          # micro benchmarks
+  libcli11-dev                              # command-line parsing
+  libyaml-cpp-dev                           # scene files
+  nlohmann-json3-dev                        # JSON manifests and benchmark output
+  python3 python3-numpy python3-scipy       # reference scripts for validation tests
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get -o DPkg::Lock::Timeout=900 install -y -q --no-install-recommends "${missing[@]}"
