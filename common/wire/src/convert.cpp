@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/wire/convert.hpp"
+
+#include <string>
+
+namespace sadr::wire {
+
+void to_proto(const Status& in, common::v1::Status& out) {
+  out.set_code(static_cast<common::v1::StatusCode>(static_cast<int>(in.code)));
+  out.set_message(in.message);
+  out.clear_details();
+  for (const auto& [k, v] : in.details) {
+    auto* d = out.add_details();
+    d->set_key(k);
+    d->set_value(v);
+  }
+}
+
+Status from_proto(const common::v1::Status& in) {
+  Status s;
+  const int code = static_cast<int>(in.code());
+  s.code = (code >= 0 && code <= static_cast<int>(StatusCode::kAborted))
+               ? static_cast<StatusCode>(code)
+               : StatusCode::kInternal;
+  s.message = in.message();
+  for (const auto& d : in.details()) s.details.emplace_back(d.key(), d.value());
+  return s;
+}
+
+void to_proto(const Box& in, common::v1::Box& out) {
+  out.set_dimension(static_cast<std::uint32_t>(in.dimension));
+  out.clear_lower();
+  out.clear_upper();
+  out.clear_periodic();
+  for (int a = 0; a < 3; ++a) {
+    out.add_lower(in.lo[a]);
+    out.add_upper(in.hi[a]);
+    out.add_periodic(in.periodic[a]);
+  }
+}
+
+Box from_proto(const common::v1::Box& in, std::string_view where) {
+  auto bad = [&](const std::string& what) {
+    return InvalidArgument(std::string(where) + ": " + what);
+  };
+  if (in.lower_size() != 3 || in.upper_size() != 3 || in.periodic_size() != 3) {
+    throw bad("lower, upper and periodic need 3 values each (got " +
+              std::to_string(in.lower_size()) + ", " + std::to_string(in.upper_size()) + ", " +
+              std::to_string(in.periodic_size()) + ")");
+  }
+  Box b;
+  b.dimension = static_cast<int>(in.dimension());
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = in.lower(a);
+    b.hi[a] = in.upper(a);
+    b.periodic[a] = in.periodic(a);
+  }
+  try {
+    b.validate();
+  } catch (const InvalidArgument& e) {
+    throw bad(e.what());
+  }
+  return b;
+}
+
+void to_proto(const ParticleState& in, common::v1::ParticleState& out, bool with_velocities) {
+  out.set_dimension(static_cast<std::uint32_t>(in.dimension));
+  out.mutable_positions()->Assign(in.positions.begin(), in.positions.end());
+  out.mutable_densities()->Assign(in.densities.begin(), in.densities.end());
+  out.mutable_masses()->Assign(in.masses.begin(), in.masses.end());
+  if (with_velocities) {
+    out.mutable_velocities()->Assign(in.velocities.begin(), in.velocities.end());
+  } else {
+    out.clear_velocities();
+  }
+  auto* kinds = out.mutable_kinds();
+  kinds->Clear();
+  kinds->Reserve(static_cast<int>(in.kinds.size()));
+  for (auto k : in.kinds) kinds->Add(static_cast<std::uint32_t>(k));
+  out.mutable_ids()->Assign(in.ids.begin(), in.ids.end());
+}
+
+ParticleState from_proto(const common::v1::ParticleState& in, std::string_view where) {
+  ParticleState s;
+  s.dimension = static_cast<int>(in.dimension());
+  s.positions.assign(in.positions().begin(), in.positions().end());
+  s.densities.assign(in.densities().begin(), in.densities().end());
+  s.masses.assign(in.masses().begin(), in.masses().end());
+  s.velocities.assign(in.velocities().begin(), in.velocities().end());
+  s.ids.assign(in.ids().begin(), in.ids().end());
+  s.kinds.reserve(static_cast<std::size_t>(in.kinds_size()));
+  for (int i = 0; i < in.kinds_size(); ++i) {
+    const std::uint32_t k = in.kinds(i);
+    if (k > static_cast<std::uint32_t>(ParticleKind::kOutlet)) {
+      throw InvalidArgument(std::string(where) + ": kinds[" + std::to_string(i) + "] = " +
+                            std::to_string(k) + " (allowed: 0 fluid, 1 wall, 2 inlet, 3 outlet)");
+    }
+    s.kinds.push_back(static_cast<ParticleKind>(k));
+  }
+  try {
+    s.validate();
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(std::string(where) + ": " + e.what());
+  }
+  return s;
+}
+
+}  // namespace sadr::wire

@@ -1,0 +1,320 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/wire/rpc.hpp"
+
+#include <cerrno>
+#include <set>
+#include <vector>
+#include <zmq.hpp>
+#include <zmq_addon.hpp>
+
+#include "sadr/common/log.hpp"
+#include "sadr/common/v1/status.pb.h"
+#include "sadr/common/version.hpp"
+#include "sadr/wire/convert.hpp"
+
+namespace sadr::wire {
+namespace {
+
+constexpr std::string_view kHandshakeType = "sadr.common.v1.HandshakeRequest";
+constexpr std::string_view kHandshakeReplyType = "sadr.common.v1.HandshakeReply";
+constexpr std::string_view kStatusType = "sadr.common.v1.Status";
+
+/// One context per process, never destroyed: inproc endpoints need a shared
+/// context, and a context torn down at exit would block on sockets that
+/// detached threads still hold.
+zmq::context_t& shared_context() {
+  static auto* ctx = new zmq::context_t(1);
+  return *ctx;
+}
+
+std::string to_bytes(const google::protobuf::Message& m) {
+  std::string out;
+  m.SerializeToString(&out);
+  return out;
+}
+
+std::string make_header(std::string_view type, std::uint64_t sequence) {
+  common::v1::FrameHeader h;
+  h.set_protocol_version(kProtocolVersion);
+  h.set_message_type(std::string(type));
+  h.set_sequence(sequence);
+  return to_bytes(h);
+}
+
+std::string status_body(StatusCode code, const std::string& message) {
+  common::v1::Status s;
+  to_proto(Status{code, message, {}}, s);
+  return to_bytes(s);
+}
+
+/// Number of frames up to and including the empty delimiter (or all frames if none).
+std::size_t envelope_size(const std::vector<zmq::message_t>& frames) {
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (frames[i].size() == 0) return i + 1;
+  }
+  return frames.size();
+}
+
+}  // namespace
+
+std::string_view service_name(common::v1::ServiceKind kind) {
+  switch (kind) {
+    case common::v1::SERVICE_KIND_FLUID:
+      return "fluid_service";
+    case common::v1::SERVICE_KIND_SSA:
+      return "ssa_service";
+    default:
+      return "unspecified service";
+  }
+}
+
+// ---------------------------------------------------------------- server
+
+struct RpcServer::Impl {
+  ServerOptions options;
+  zmq::socket_t socket{shared_context(), zmq::socket_type::router};
+  std::set<std::string> handshaken;  // ROUTER identities that completed a handshake
+
+  /// Returns the reply [header, body] for one request.
+  std::pair<std::string, std::string> dispatch(const std::string& peer,
+                                               const std::vector<zmq::message_t>& frames,
+                                               RequestHandler& handler, bool& shutdown);
+};
+
+RpcServer::RpcServer(ServerOptions options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = std::move(options);
+  auto& s = impl_->socket;
+  s.set(zmq::sockopt::linger, 0);
+  s.set(zmq::sockopt::maxmsgsize, impl_->options.max_message_bytes);
+  try {
+    s.bind(impl_->options.endpoint);
+  } catch (const zmq::error_t& e) {
+    throw Error(StatusCode::kUnavailable, std::string(service_name(impl_->options.kind)) +
+                                              " cannot bind '" + impl_->options.endpoint +
+                                              "': " + e.what());
+  }
+}
+
+RpcServer::~RpcServer() = default;
+
+std::string RpcServer::endpoint() const {
+  return impl_->socket.get(zmq::sockopt::last_endpoint);
+}
+
+std::pair<std::string, std::string> RpcServer::Impl::dispatch(
+    const std::string& peer, const std::vector<zmq::message_t>& frames, RequestHandler& handler,
+    bool& shutdown) {
+  const std::string me(service_name(options.kind));
+  auto refuse = [&](StatusCode code, const std::string& why) {
+    log::warn("refused a request: ", why);
+    return std::pair{make_header(kStatusType, 0), status_body(code, why)};
+  };
+  // frames: [envelope...][empty delimiter][header][body]; the envelope is the
+  // ROUTER identity plus, for REQ clients with req_correlate, a request id.
+  const std::size_t payload = envelope_size(frames);
+  if (frames.size() - payload != 2) {
+    return refuse(StatusCode::kProtocolMismatch,
+                  "malformed message: expected 2 frames [FrameHeader][body], got " +
+                      std::to_string(frames.size() - payload));
+  }
+  common::v1::FrameHeader header;
+  if (!header.ParseFromArray(frames[payload].data(), static_cast<int>(frames[payload].size()))) {
+    return refuse(StatusCode::kProtocolMismatch,
+                  "malformed frame header (" + std::to_string(frames[payload].size()) +
+                      " bytes): expected a serialized sadr.common.v1.FrameHeader");
+  }
+  if (header.protocol_version() != kProtocolVersion) {
+    return refuse(StatusCode::kProtocolMismatch,
+                  "protocol version mismatch: this " + me + " speaks sadr wire protocol v" +
+                      std::to_string(kProtocolVersion) + ", the request declared v" +
+                      std::to_string(header.protocol_version()) + " (message " +
+                      header.message_type() + ")");
+  }
+  const std::string body = frames[payload + 1].to_string();
+  if (header.message_type() == kHandshakeType) {
+    common::v1::HandshakeRequest req;
+    common::v1::HandshakeReply rep;
+    rep.set_protocol_version(kProtocolVersion);
+    rep.set_kind(options.kind);
+    rep.set_server_version(kVersion);
+    rep.set_pid(0);
+    Status st;
+    if (!req.ParseFromString(body)) {
+      st = {StatusCode::kInvalidArgument,
+            "malformed handshake: the body is not a sadr.common.v1.HandshakeRequest (" +
+                std::to_string(body.size()) + " bytes)",
+            {}};
+    } else if (req.protocol_version() != kProtocolVersion) {
+      st = {StatusCode::kProtocolMismatch,
+            "protocol version mismatch: this " + me + " speaks sadr wire protocol v" +
+                std::to_string(kProtocolVersion) + ", the client asked for v" +
+                std::to_string(req.protocol_version()),
+            {{"expected", std::to_string(kProtocolVersion)},
+             {"received", std::to_string(req.protocol_version())}}};
+    } else if (req.expected_kind() != common::v1::SERVICE_KIND_UNSPECIFIED &&
+               req.expected_kind() != options.kind) {
+      st = {StatusCode::kProtocolMismatch,
+            "wrong service: this endpoint is " + me + ", the client expected " +
+                std::string(service_name(req.expected_kind())),
+            {}};
+    } else {
+      handshaken.insert(peer);
+      log::info("handshake from '", req.client_name(), "' accepted (protocol v", kProtocolVersion,
+                ")");
+    }
+    if (!st.ok()) log::warn("handshake refused: ", st.message);
+    to_proto(st, *rep.mutable_status());
+    return {make_header(kHandshakeReplyType, header.sequence()), to_bytes(rep)};
+  }
+  if (header.message_type() != handler.request_type()) {
+    return refuse(StatusCode::kProtocolMismatch, "unexpected message type '" +
+                                                     header.message_type() + "': this " + me +
+                                                     " accepts " + std::string(kHandshakeType) +
+                                                     " and " + std::string(handler.request_type()));
+  }
+  if (!handshaken.count(peer)) {
+    return refuse(StatusCode::kFailedPrecondition,
+                  "no handshake: send a sadr.common.v1.HandshakeRequest before " +
+                      std::string(handler.request_type()));
+  }
+  std::string reply = handler.handle(body, shutdown);
+  return {make_header(handler.reply_type(), header.sequence()), std::move(reply)};
+}
+
+void RpcServer::serve(RequestHandler& handler, const std::atomic<bool>* stop) {
+  auto& s = impl_->socket;
+  bool shutdown = false;
+  while (!shutdown && !(stop && stop->load())) {
+    zmq::pollitem_t items[] = {{s.handle(), 0, ZMQ_POLLIN, 0}};
+    try {
+      zmq::poll(items, 1, impl_->options.poll_interval);
+    } catch (const zmq::error_t& e) {
+      if (e.num() == EINTR) continue;  // a signal: re-check the stop flag
+      throw;
+    }
+    if (!(items[0].revents & ZMQ_POLLIN)) continue;
+    std::vector<zmq::message_t> frames;
+    try {
+      if (!zmq::recv_multipart(s, std::back_inserter(frames), zmq::recv_flags::dontwait)) continue;
+    } catch (const zmq::error_t& e) {
+      if (e.num() == EINTR || e.num() == EAGAIN) continue;
+      throw;
+    }
+    const std::size_t env = envelope_size(frames);
+    if (env < 2) continue;  // no identity + delimiter: not from a REQ/DEALER peer
+    const std::string peer = frames[0].to_string();
+    auto [header, body] = impl_->dispatch(peer, frames, handler, shutdown);
+    std::vector<zmq::message_t> out;
+    for (std::size_t i = 0; i < env; ++i) out.emplace_back(frames[i].data(), frames[i].size());
+    out.emplace_back(header.data(), header.size());
+    out.emplace_back(body.data(), body.size());
+    zmq::send_multipart(s, out);
+  }
+}
+
+// ---------------------------------------------------------------- client
+
+struct RpcClient::Impl {
+  zmq::socket_t socket{shared_context(), zmq::socket_type::req};
+};
+
+RpcClient::RpcClient(std::string endpoint, std::string peer_name, std::chrono::milliseconds timeout)
+    : impl_(std::make_unique<Impl>()),
+      endpoint_(std::move(endpoint)),
+      peer_name_(std::move(peer_name)),
+      timeout_(timeout) {
+  auto& s = impl_->socket;
+  s.set(zmq::sockopt::linger, 0);
+  s.set(zmq::sockopt::req_relaxed, 1);    // may resend after a timeout
+  s.set(zmq::sockopt::req_correlate, 1);  // ... and ignore the late reply
+  try {
+    s.connect(endpoint_);
+  } catch (const zmq::error_t& e) {
+    throw Error(StatusCode::kUnavailable,
+                "cannot connect to " + peer_name_ + " at '" + endpoint_ + "': " + e.what());
+  }
+}
+
+RpcClient::~RpcClient() = default;
+
+void RpcClient::call_raw(const std::string& header, const std::string& body,
+                         std::string& reply_header, std::string& reply_body) {
+  auto& s = impl_->socket;
+  s.send(zmq::buffer(header), zmq::send_flags::sndmore);
+  s.send(zmq::buffer(body), zmq::send_flags::none);
+  zmq::pollitem_t items[] = {{s.handle(), 0, ZMQ_POLLIN, 0}};
+  const auto deadline = std::chrono::steady_clock::now() + timeout_;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      throw Error(StatusCode::kDeadlineExceeded,
+                  peer_name_ + " at " + endpoint_ + " did not answer within " +
+                      std::to_string(timeout_.count()) + " ms (is it running?)");
+    }
+    try {
+      zmq::poll(items, 1, left);
+    } catch (const zmq::error_t& e) {
+      if (e.num() == EINTR) continue;
+      throw;
+    }
+    if (items[0].revents & ZMQ_POLLIN) break;
+  }
+  std::vector<zmq::message_t> frames;
+  (void)zmq::recv_multipart(s, std::back_inserter(frames));
+  if (frames.size() != 2) {
+    throw Error(StatusCode::kProtocolMismatch, peer_name_ + " sent a reply with " +
+                                                   std::to_string(frames.size()) +
+                                                   " frames, expected 2 [FrameHeader][body]");
+  }
+  reply_header = frames[0].to_string();
+  reply_body = frames[1].to_string();
+}
+
+void RpcClient::call(const google::protobuf::Message& request, google::protobuf::Message& reply) {
+  std::string rh, rb;
+  call_raw(make_header(request.GetTypeName(), ++sequence_), to_bytes(request), rh, rb);
+  common::v1::FrameHeader header;
+  if (!header.ParseFromString(rh)) {
+    throw Error(StatusCode::kProtocolMismatch,
+                peer_name_ + " sent a reply whose header is not a sadr.common.v1.FrameHeader");
+  }
+  if (header.protocol_version() != kProtocolVersion) {
+    throw Error(StatusCode::kProtocolMismatch, peer_name_ + " replied with protocol v" +
+                                                   std::to_string(header.protocol_version()) +
+                                                   ", this client speaks v" +
+                                                   std::to_string(kProtocolVersion));
+  }
+  if (header.message_type() == kStatusType) {
+    common::v1::Status st;
+    st.ParseFromString(rb);
+    Status s = from_proto(st);
+    throw Error(s.code, peer_name_ + " refused the request: " + s.message, s.details);
+  }
+  if (header.message_type() != reply.GetTypeName()) {
+    throw Error(StatusCode::kProtocolMismatch, peer_name_ + " replied with message type '" +
+                                                   header.message_type() + "', expected '" +
+                                                   reply.GetTypeName() + "'");
+  }
+  if (!reply.ParseFromString(rb)) {
+    throw Error(StatusCode::kProtocolMismatch, peer_name_ + " sent an unparsable " +
+                                                   reply.GetTypeName() + " (" +
+                                                   std::to_string(rb.size()) + " bytes)");
+  }
+}
+
+common::v1::HandshakeReply RpcClient::handshake(common::v1::ServiceKind expected,
+                                                std::uint32_t protocol_version) {
+  common::v1::HandshakeRequest req;
+  req.set_protocol_version(protocol_version);
+  req.set_expected_kind(expected);
+  req.set_client_name(std::string("sadr client ") + kVersion);
+  common::v1::HandshakeReply rep;
+  call(req, rep);
+  const Status st = from_proto(rep.status());
+  if (!st.ok())
+    throw Error(st.code, peer_name_ + " refused the handshake: " + st.message, st.details);
+  return rep;
+}
+
+}  // namespace sadr::wire
