@@ -105,4 +105,38 @@ ParticleState from_proto(const common::v1::ParticleState& in, std::string_view w
   return s;
 }
 
+RegionMap regions_from_proto(
+    const google::protobuf::RepeatedPtrField<common::v1::RegionMembership>& regions,
+    std::size_t n_particles, std::string_view where) {
+  RegionMap out;
+  for (int r = 0; r < regions.size(); ++r) {
+    const auto& reg = regions.Get(r);
+    const std::string here = std::string(where) + ".regions[" + std::to_string(r) + "]";
+    if (reg.name().empty()) throw InvalidArgument(here + ".name is empty");
+    if (out.count(reg.name())) {
+      throw InvalidArgument(here + ".name = '" + reg.name() + "' is used twice");
+    }
+    std::vector<std::uint32_t> idx(reg.particles().begin(), reg.particles().end());
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      if (idx[k] >= n_particles) {
+        throw InvalidArgument(here + ".particles[" + std::to_string(k) +
+                              "] = " + std::to_string(idx[k]) + " (allowed: 0.." +
+                              std::to_string(n_particles - 1) + ")");
+      }
+    }
+    out.emplace(reg.name(), std::move(idx));
+  }
+  return out;
+}
+
+const std::vector<std::uint32_t>& region_particles(const RegionMap& regions, std::string_view name,
+                                                   std::string_view where) {
+  const auto it = regions.find(name);
+  if (it != regions.end()) return it->second;
+  std::string known;
+  for (const auto& [k, v] : regions) known += (known.empty() ? "" : ", ") + k;
+  throw InvalidArgument(std::string(where) + ": unknown region '" + std::string(name) +
+                        "' (known: " + (known.empty() ? "none" : known) + ")");
+}
+
 }  // namespace sadr::wire

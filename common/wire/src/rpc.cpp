@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/wire/rpc.hpp"
 
+#include <unistd.h>
 #include <cerrno>
 #include <set>
 #include <vector>
@@ -137,7 +138,7 @@ std::pair<std::string, std::string> RpcServer::Impl::dispatch(
     rep.set_protocol_version(kProtocolVersion);
     rep.set_kind(options.kind);
     rep.set_server_version(kVersion);
-    rep.set_pid(0);
+    rep.set_pid(static_cast<std::uint32_t>(getpid()));
     Status st;
     if (!req.ParseFromString(body)) {
       st = {StatusCode::kInvalidArgument,

@@ -5,11 +5,14 @@
 /// field, so generated types never reach a numerical core.
 #pragma once
 
+#include <map>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/status.hpp"
+#include "sadr/common/v1/model.pb.h"
 #include "sadr/common/v1/particles.pb.h"
 #include "sadr/common/v1/status.pb.h"
 
@@ -26,5 +29,15 @@ Box from_proto(const common::v1::Box& in, std::string_view where);
 void to_proto(const ParticleState& in, common::v1::ParticleState& out, bool with_velocities = true);
 /// Checks lengths, finiteness, positivity (ParticleState::validate) and kind values.
 ParticleState from_proto(const common::v1::ParticleState& in, std::string_view where);
+
+/// Region name -> particle indices.
+using RegionMap = std::map<std::string, std::vector<std::uint32_t>, std::less<>>;
+/// Checks names are unique and indices < n_particles; `where` prefixes errors.
+RegionMap regions_from_proto(
+    const google::protobuf::RepeatedPtrField<common::v1::RegionMembership>& regions,
+    std::size_t n_particles, std::string_view where);
+/// Particles of `name`; throws InvalidArgument listing the known regions if absent.
+const std::vector<std::uint32_t>& region_particles(const RegionMap& regions, std::string_view name,
+                                                   std::string_view where);
 
 }  // namespace sadr::wire

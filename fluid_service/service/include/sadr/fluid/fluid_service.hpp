@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+/// \file fluid_service.hpp
+/// fluid_service request handling: sadr.fluid.v1 messages <-> a FluidBackend
+/// chosen by name from the registry.
+///
+/// Request order: Init first; then Advance / GetState / SetSpecies /
+/// Snapshot / Restore; Shutdown ends the service. Restore needs a prior Init
+/// with the same model. Advance is idempotent on (run_id, step_index).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "sadr/fluid/backend_registry.hpp"
+#include "sadr/fluid/fluid_model.hpp"
+#include "sadr/fluid/v1/fluid_service.pb.h"
+#include "sadr/wire/typed_handler.hpp"
+
+namespace sadr::fluid {
+
+/// Converts the wire model to the core model (all species, stochastic ones
+/// flagged non-deterministic). Throws InvalidArgument naming the field.
+FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles);
+
+class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::FluidReply> {
+ public:
+  FluidServiceHandler();
+  ~FluidServiceHandler() override;
+
+ protected:
+  void handle_typed(const v1::FluidRequest& request, v1::FluidReply& reply,
+                    bool& shutdown) override;
+
+ private:
+  void init(const v1::InitRequest& req, v1::InitReply& rep);
+  void advance(const v1::AdvanceRequest& req, v1::AdvanceReply& rep);
+  void get_state(const v1::GetStateRequest& req, v1::GetStateReply& rep) const;
+  void set_species(const v1::SetSpeciesRequest& req);
+  void snapshot(const v1::SnapshotRequest& req, v1::SnapshotReply& rep) const;
+  void restore(const v1::RestoreRequest& req);
+  FluidBackend& backend() const;
+  int species(const std::string& name, const std::string& where) const;
+
+  BackendRegistry registry_;
+  std::unique_ptr<FluidBackend> backend_;
+  FluidModel model_;
+  std::size_t n_particles_ = 0;
+  std::string last_run_id_;
+  std::uint64_t last_step_ = 0;
+  bool have_last_ = false;
+  v1::AdvanceReply last_reply_;
+};
+
+}  // namespace sadr::fluid

@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/fluid/fluid_service.hpp"
+
+#include "sadr/common/log.hpp"
+#include "sadr/fluid/builtin_backends.hpp"
+#include "sadr/wire/convert.hpp"
+
+namespace sadr::fluid {
+namespace {
+constexpr std::uint32_t kSnapshotVersion = 1;  // of the envelope; the blob has its own
+}  // namespace
+
+FluidServiceHandler::FluidServiceHandler() {
+  register_builtin_backends(registry_);
+}
+FluidServiceHandler::~FluidServiceHandler() = default;
+
+FluidBackend& FluidServiceHandler::backend() const {
+  if (!backend_) throw FailedPrecondition("fluid_service is not initialised: send Init first");
+  return *backend_;
+}
+
+int FluidServiceHandler::species(const std::string& name, const std::string& where) const {
+  const int s = model_.species_index(name);
+  if (s < 0) {
+    std::string known;
+    for (const auto& sp : model_.species) known += (known.empty() ? "" : ", ") + sp.name;
+    throw InvalidArgument(where + ": unknown species '" + name +
+                          "' (known: " + (known.empty() ? "none" : known) + ")");
+  }
+  return s;
+}
+
+void FluidServiceHandler::handle_typed(const v1::FluidRequest& request, v1::FluidReply& reply,
+                                       bool& shutdown) {
+  switch (request.body_case()) {
+    case v1::FluidRequest::kInit:
+      init(request.init(), *reply.mutable_init());
+      break;
+    case v1::FluidRequest::kAdvance:
+      advance(request.advance(), *reply.mutable_advance());
+      break;
+    case v1::FluidRequest::kGetState:
+      get_state(request.get_state(), *reply.mutable_get_state());
+      break;
+    case v1::FluidRequest::kSetSpecies:
+      set_species(request.set_species());
+      reply.mutable_set_species();
+      break;
+    case v1::FluidRequest::kSnapshot:
+      snapshot(request.snapshot(), *reply.mutable_snapshot());
+      break;
+    case v1::FluidRequest::kRestore:
+      restore(request.restore());
+      reply.mutable_restore();
+      break;
+    case v1::FluidRequest::kShutdown:
+      reply.mutable_shutdown();
+      shutdown = true;
+      break;
+    case v1::FluidRequest::BODY_NOT_SET:
+      throw InvalidArgument(
+          "empty FluidRequest: set one of init, advance, get_state, "
+          "set_species, snapshot, restore, shutdown");
+  }
+}
+
+void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
+  const ParticleState particles = wire::from_proto(req.particles(), "init.particles");
+  FluidModel model = model_from_proto(req.model(), particles.size());
+  auto backend = registry_.create(req.model().backend());
+  std::vector<std::vector<double>> conc(model.species.size());
+  for (int k = 0; k < req.concentrations().species_size(); ++k) {
+    const auto& f = req.concentrations().species(k);
+    const std::string where = "init.concentrations.species[" + std::to_string(k) + "]";
+    const int s = model.species_index(f.name());
+    if (s < 0) throw InvalidArgument(where + ": unknown species '" + f.name() + "'");
+    if (static_cast<std::size_t>(f.concentrations_size()) != particles.size()) {
+      throw InvalidArgument(where + ".concentrations has " +
+                            std::to_string(f.concentrations_size()) + " entries, expected " +
+                            std::to_string(particles.size()));
+    }
+    conc[static_cast<std::size_t>(s)].assign(f.concentrations().begin(), f.concentrations().end());
+  }
+  for (auto& c : conc) {
+    if (c.empty()) c.assign(particles.size(), 0.0);
+  }
+  backend->initialize(model, particles, conc);
+  const Capabilities caps = backend->capabilities();
+  if (caps.moves_particles) rep.add_capabilities("moves_particles");
+  if (caps.transports_species) rep.add_capabilities("transports_species");
+  if (caps.thermal_noise) rep.add_capabilities("thermal_noise");
+  if (caps.exact_restart) rep.add_capabilities("exact_restart");
+  backend_ = std::move(backend);
+  model_ = std::move(model);
+  n_particles_ = particles.size();
+  have_last_ = false;
+  log::info("initialised backend '", backend_->name(), "' with ", n_particles_, " particles, ",
+            model_.species.size(), " species");
+}
+
+void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply& rep) {
+  FluidBackend& b = backend();
+  if (have_last_ && req.run_id() == last_run_id_ && req.step_index() == last_step_) {
+    rep = last_reply_;
+    return;
+  }
+  if (!(req.time_step() > 0)) {
+    throw InvalidArgument("advance.time_step = " + format_value(req.time_step()) +
+                          " (allowed: > 0)");
+  }
+  const StepReport r = b.advance(req.step_index(), req.time_step());
+  rep.set_step_index(req.step_index());
+  rep.set_time(r.time);
+  rep.set_substeps(r.substeps);
+  rep.set_max_speed(r.max_speed);
+  rep.set_min_density(r.min_density);
+  rep.set_max_density(r.max_density);
+  rep.set_particles_moved(r.particles_moved);
+  last_run_id_ = req.run_id();
+  last_step_ = req.step_index();
+  last_reply_ = rep;
+  have_last_ = true;
+}
+
+void FluidServiceHandler::get_state(const v1::GetStateRequest& req, v1::GetStateReply& rep) const {
+  const FluidBackend& b = backend();
+  ParticleState state;
+  b.read_state(state);
+  wire::to_proto(state, *rep.mutable_particles(), req.velocities());
+  rep.mutable_particles()->set_time(b.time());
+  for (int k = 0; k < req.species_size(); ++k) {
+    const int s = species(req.species(k), "get_state.species[" + std::to_string(k) + "]");
+    auto* f = rep.mutable_concentrations()->add_species();
+    f->set_name(req.species(k));
+    const auto& c = b.concentrations(s);
+    f->mutable_concentrations()->Assign(c.begin(), c.end());
+  }
+}
+
+void FluidServiceHandler::set_species(const v1::SetSpeciesRequest& req) {
+  FluidBackend& b = backend();
+  for (int k = 0; k < req.concentrations().species_size(); ++k) {
+    const auto& f = req.concentrations().species(k);
+    const std::string where = "set_species.concentrations.species[" + std::to_string(k) + "]";
+    const int s = species(f.name(), where);
+    if (static_cast<std::size_t>(f.concentrations_size()) != n_particles_) {
+      throw InvalidArgument(where + " has " + std::to_string(f.concentrations_size()) +
+                            " values, expected " + std::to_string(n_particles_));
+    }
+    b.set_concentrations(
+        s, std::span<const double>(f.concentrations().data(), f.concentrations_size()));
+  }
+}
+
+void FluidServiceHandler::snapshot(const v1::SnapshotRequest& req, v1::SnapshotReply& rep) const {
+  const FluidBackend& b = backend();
+  auto* snap = rep.mutable_snapshot();
+  snap->set_format("sadr.fluid." + std::string(b.name()));
+  snap->set_format_version(kSnapshotVersion);
+  snap->set_step_index(req.step_index());
+  snap->set_time(b.time());
+  snap->set_blob(b.save());
+  (*snap->mutable_metadata())["backend"] = std::string(b.name());
+  (*snap->mutable_metadata())["particles"] = std::to_string(n_particles_);
+  (*snap->mutable_metadata())["seed"] = std::to_string(model_.seed);
+}
+
+void FluidServiceHandler::restore(const v1::RestoreRequest& req) {
+  FluidBackend& b = backend();
+  const auto& snap = req.snapshot();
+  const std::string want = "sadr.fluid." + std::string(b.name());
+  if (snap.format() != want || snap.format_version() != kSnapshotVersion) {
+    throw InvalidArgument("restore: snapshot format '" + snap.format() + "' v" +
+                          std::to_string(snap.format_version()) + " does not match backend '" +
+                          std::string(b.name()) + "' (" + want + " v" +
+                          std::to_string(kSnapshotVersion) + ")");
+  }
+  b.restore(snap.blob());
+  have_last_ = false;
+}
+
+}  // namespace sadr::fluid

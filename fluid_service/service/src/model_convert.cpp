@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: MIT
+// sadr.fluid.v1.FluidModel -> sadr::fluid::FluidModel (validation at the boundary).
+#include <map>
+
+#include "sadr/fluid/fluid_service.hpp"
+#include "sadr/wire/convert.hpp"
+
+namespace sadr::fluid {
+namespace {
+
+std::array<double, 3> vec3(const google::protobuf::RepeatedField<double>& v,
+                           const std::string& where, std::array<double, 3> fallback) {
+  if (v.empty()) return fallback;
+  if (v.size() != 3) {
+    throw InvalidArgument(where + " needs 3 values, got " + std::to_string(v.size()));
+  }
+  return {v[0], v[1], v[2]};
+}
+
+WallCondition wall_condition(const common::v1::WallBoundary& w) {
+  switch (w.condition()) {
+    case common::v1::WALL_CONDITION_DIRICHLET:
+      return {WallCondition::Type::kDirichlet, w.value()};
+    case common::v1::WALL_CONDITION_NEUMANN:
+      return {WallCondition::Type::kNeumann, w.value()};
+    default:
+      return {WallCondition::Type::kNoFlux, 0.0};
+  }
+}
+
+std::vector<std::pair<int, int>> stoichiometry(
+    const google::protobuf::RepeatedPtrField<common::v1::StoichiometryEntry>& entries,
+    const FluidModel& m, const std::string& where) {
+  std::vector<std::pair<int, int>> out;
+  for (int k = 0; k < entries.size(); ++k) {
+    const int s = m.species_index(entries.Get(k).species());
+    const std::string here = where + "[" + std::to_string(k) + "]";
+    if (s < 0 || !m.species[static_cast<std::size_t>(s)].deterministic) {
+      throw InvalidArgument(here + ".species = '" + entries.Get(k).species() +
+                            "' is not a deterministic species of this scene");
+    }
+    out.emplace_back(s, static_cast<int>(entries.Get(k).count()));
+  }
+  return out;
+}
+
+}  // namespace
+
+FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
+  const std::string where = "init.model";
+  FluidModel m;
+  m.box = wire::from_proto(in.box(), where + ".box");
+  m.smoothing_length = in.smoothing_length();
+  if (!in.kernel().empty()) m.kernel = in.kernel();
+  m.reference_density = in.reference_density();
+  m.sound_speed = in.sound_speed();
+  m.shear_viscosity = in.shear_viscosity();
+  m.temperature = in.temperature();
+  m.gravity = vec3(in.gravity(), where + ".gravity", {0, 0, 0});
+  m.seed = in.seed();
+  m.max_time_step = in.max_time_step();
+  m.force_time_step = in.force_time_step();
+
+  const auto regions = wire::regions_from_proto(in.regions(), n_particles, where);
+  std::map<std::string, std::size_t, std::less<>> wall_region_index;
+  for (int s = 0; s < in.species_size(); ++s) {
+    const auto& sp = in.species(s);
+    SpeciesSpec spec;
+    spec.name = sp.name();
+    spec.diffusivity = sp.diffusivity();
+    spec.deterministic = !sp.stochastic();
+    for (int w = 0; w < sp.walls_size(); ++w) {
+      const auto& wall = sp.walls(w);
+      if (wall.region().empty()) {
+        spec.default_wall = wall_condition(wall);
+        continue;
+      }
+      const std::string here =
+          where + ".species[" + std::to_string(s) + "].walls[" + std::to_string(w) + "]";
+      auto it = wall_region_index.find(wall.region());
+      if (it == wall_region_index.end()) {
+        WallRegion region;
+        region.name = wall.region();
+        region.particles = wire::region_particles(regions, wall.region(), here);
+        m.wall_regions.push_back(std::move(region));
+        it = wall_region_index.emplace(wall.region(), m.wall_regions.size() - 1).first;
+      }
+      spec.wall_conditions.resize(m.wall_regions.size(), spec.default_wall);
+      spec.wall_conditions[it->second] = wall_condition(wall);
+    }
+    m.species.push_back(std::move(spec));
+  }
+  // Every species lists one condition per wall region (its default where unset).
+  for (auto& spec : m.species)
+    spec.wall_conditions.resize(m.wall_regions.size(), spec.default_wall);
+
+  for (int r = 0; r < in.reactions_size(); ++r) {
+    const auto& rx = in.reactions(r);
+    const std::string here = where + ".reactions[" + std::to_string(r) + "]";
+    if (!rx.regions().empty() || !rx.kinds().empty()) {
+      throw InvalidArgument(here +
+                            ": deterministic reactions restricted to regions or kinds are "
+                            "not supported by fluid_service; remove 'regions'/'kinds'");
+    }
+    ReactionSpec spec;
+    spec.name = rx.name();
+    spec.reactants = stoichiometry(rx.reactants(), m, here + ".reactants");
+    spec.products = stoichiometry(rx.products(), m, here + ".products");
+    spec.rate = rx.rate();
+    m.reactions.push_back(std::move(spec));
+  }
+
+  const auto opt = in.options().find("density");
+  if (opt != in.options().end()) {
+    if (opt->second == "continuity") {
+      m.density_mode = DensityMode::kContinuity;
+    } else if (opt->second == "summation") {
+      m.density_mode = DensityMode::kSummation;
+    } else {
+      throw InvalidArgument(where + ".options.density = '" + opt->second +
+                            "' (allowed: continuity, summation)");
+    }
+  }
+  for (const auto& [key, value] : in.parameters()) {
+    if (key == "density_diffusion") {
+      m.density_diffusion = value;
+    } else if (key == "diffusion_eps") {
+      m.diffusion_eps = value;
+    } else if (key == "density_band") {
+      m.density_band = value;
+    } else if (key == "neighbor_skin") {
+      m.neighbor_skin = value;
+    } else {
+      throw InvalidArgument(where + ".parameters: unknown key '" + key +
+                            "' (known: density_diffusion, diffusion_eps, density_band, "
+                            "neighbor_skin)");
+    }
+  }
+  if (!in.buoyancy_species().empty()) {
+    m.boussinesq.species = m.species_index(in.buoyancy_species());
+    if (m.boussinesq.species < 0) {
+      throw InvalidArgument(where + ".buoyancy_species = '" + in.buoyancy_species() +
+                            "' is not a species of this scene");
+    }
+    m.boussinesq.coefficient = in.buoyancy_coefficient();
+    m.boussinesq.reference = in.buoyancy_reference();
+    m.boussinesq.direction =
+        vec3(in.buoyancy_direction(), where + ".buoyancy_direction", {0, 1, 0});
+  }
+  m.validate();
+  return m;
+}
+
+}  // namespace sadr::fluid

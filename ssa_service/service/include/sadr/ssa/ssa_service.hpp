@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+/// \file ssa_service.hpp
+/// ssa_service request handling: sadr.ssa.v1 messages <-> sadr::ssa::NsmSolver.
+///
+/// Request order: Init (model, particles, initial counts) first; then any of
+/// Advance / GetCounts / Snapshot / Restore; Shutdown ends the service.
+/// Restore needs a prior Init with the same model (the snapshot checks it).
+/// Advance is idempotent on (run_id, step_index): a resent request gets the
+/// stored reply without stepping again (safe retries after a timeout).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sadr/ssa/model.hpp"
+#include "sadr/ssa/v1/ssa_service.pb.h"
+#include "sadr/wire/typed_handler.hpp"
+
+namespace sadr::ssa {
+
+class NsmSolver;
+
+/// Converts the wire model to the core model. Only species with
+/// stochastic = true are kept (in message order); `species_names` receives
+/// them. Throws InvalidArgument naming the field (e.g. "init.model.reactions[2]").
+Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
+                       std::vector<std::string>& species_names);
+
+class SsaServiceHandler : public wire::TypedHandler<v1::SsaRequest, v1::SsaReply> {
+ public:
+  SsaServiceHandler();
+  ~SsaServiceHandler() override;
+
+ protected:
+  void handle_typed(const v1::SsaRequest& request, v1::SsaReply& reply, bool& shutdown) override;
+
+ private:
+  void init(const v1::InitRequest& req, v1::InitReply& rep);
+  void advance(const v1::AdvanceRequest& req, v1::AdvanceReply& rep);
+  void get_counts(const v1::GetCountsRequest& req, v1::GetCountsReply& rep) const;
+  void snapshot(const v1::SnapshotRequest& req, v1::SnapshotReply& rep) const;
+  void restore(const v1::RestoreRequest& req);
+  NsmSolver& solver() const;
+
+  std::unique_ptr<NsmSolver> solver_;
+  std::vector<std::string> species_names_;
+  std::uint64_t seed_ = 0;
+  // Idempotent advance: the last (run_id, step_index) and its reply.
+  std::string last_run_id_;
+  std::uint64_t last_step_ = 0;
+  bool have_last_ = false;
+  v1::AdvanceReply last_reply_;
+};
+
+}  // namespace sadr::ssa

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: MIT
+// sadr.ssa.v1.SsaModel -> sadr::ssa::Model (validation at the process boundary).
+#include <algorithm>
+#include <map>
+#include <string>
+
+#include "sadr/ssa/ssa_service.hpp"
+#include "sadr/wire/convert.hpp"
+
+namespace sadr::ssa {
+namespace {
+
+std::vector<std::pair<int, int>> stoichiometry(
+    const google::protobuf::RepeatedPtrField<common::v1::StoichiometryEntry>& entries,
+    const std::map<std::string, int, std::less<>>& index, const std::string& where) {
+  std::vector<std::pair<int, int>> out;
+  for (int k = 0; k < entries.size(); ++k) {
+    const auto& e = entries.Get(k);
+    const auto it = index.find(e.species());
+    if (it == index.end()) {
+      std::string known;
+      for (const auto& [name, i] : index) known += (known.empty() ? "" : ", ") + name;
+      throw InvalidArgument(where + "[" + std::to_string(k) + "].species = '" + e.species() +
+                            "' is not a stochastic species (known: " + known + ")");
+    }
+    if (e.count() < 1) {
+      throw InvalidArgument(where + "[" + std::to_string(k) +
+                            "].count = " + std::to_string(e.count()) + " (allowed: >= 1)");
+    }
+    out.emplace_back(it->second, static_cast<int>(e.count()));
+  }
+  return out;
+}
+
+}  // namespace
+
+Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
+                       std::vector<std::string>& species_names) {
+  const std::string where = "init.model";
+  Model m;
+  m.box = wire::from_proto(in.box(), where + ".box");
+  m.smoothing_length = in.smoothing_length();
+  if (in.has_regularization()) m.regularization = in.regularization();
+  switch (in.convention()) {
+    case v1::JUMP_CONVENTION_SYMMETRIC:
+      m.convention = JumpConvention::kSymmetric;
+      break;
+    case v1::JUMP_CONVENTION_VOLUME:
+      m.convention = JumpConvention::kVolume;
+      break;
+    default:
+      break;  // keep the core's default
+  }
+  const auto regions = wire::regions_from_proto(in.regions(), n_particles, where);
+
+  std::map<std::string, int, std::less<>> index;
+  species_names.clear();
+  for (int s = 0; s < in.species_size(); ++s) {
+    const auto& sp = in.species(s);
+    if (!sp.stochastic()) continue;
+    const int idx = static_cast<int>(m.species.size());
+    index.emplace(sp.name(), idx);
+    species_names.push_back(sp.name());
+    m.species.push_back(Species{sp.name(), sp.diffusivity()});
+    for (int w = 0; w < sp.walls_size(); ++w) {
+      const auto& wall = sp.walls(w);
+      const std::string here =
+          where + ".species[" + std::to_string(s) + "].walls[" + std::to_string(w) + "]";
+      std::vector<std::uint32_t> voxels;
+      if (!wall.region().empty()) voxels = wire::region_particles(regions, wall.region(), here);
+      switch (wall.condition()) {
+        case common::v1::WALL_CONDITION_DIRICHLET:
+          m.reservoirs.push_back(WallReservoir{idx, wall.value(), std::move(voxels)});
+          break;
+        case common::v1::WALL_CONDITION_NEUMANN:
+          if (!wall.region().empty()) {
+            throw InvalidArgument(here + ": a Neumann flux on region '" + wall.region() +
+                                  "' is not supported by ssa_service (it applies to all walls; "
+                                  "use region '')");
+          }
+          m.neumann.push_back(NeumannSource{idx, wall.value()});
+          break;
+        default:
+          break;  // no-flux
+      }
+    }
+  }
+  for (int r = 0; r < in.reactions_size(); ++r) {
+    const auto& rx = in.reactions(r);
+    const std::string here = where + ".reactions[" + std::to_string(r) + "]";
+    Reaction out;
+    out.name = rx.name().empty() ? "reaction " + std::to_string(r) : rx.name();
+    out.reactants = stoichiometry(rx.reactants(), index, here + ".reactants");
+    out.products = stoichiometry(rx.products(), index, here + ".products");
+    out.rate = rx.rate();
+    for (int k = 0; k < rx.kinds_size(); ++k) {
+      if (rx.kinds(k) > 3) {
+        throw InvalidArgument(here + ".kinds[" + std::to_string(k) +
+                              "] = " + std::to_string(rx.kinds(k)) + " (allowed: 0..3)");
+      }
+      out.kinds.push_back(static_cast<ParticleKind>(rx.kinds(k)));
+    }
+    for (const auto& name : rx.regions()) {
+      const auto& v = wire::region_particles(regions, name, here + ".regions");
+      out.voxels.insert(out.voxels.end(), v.begin(), v.end());
+    }
+    std::sort(out.voxels.begin(), out.voxels.end());  // regions may overlap
+    out.voxels.erase(std::unique(out.voxels.begin(), out.voxels.end()), out.voxels.end());
+    m.reactions.push_back(std::move(out));
+  }
+  m.validate();
+  return m;
+}
+
+}  // namespace sadr::ssa
