@@ -45,6 +45,8 @@ ServiceProcess::ServiceProcess(std::string executable, std::vector<std::string> 
   if (pid_ == 0) {
     // Child: stdout -> pipe; die with the parent.
     prctl(PR_SET_PDEATHSIG, SIGTERM);
+    setpgid(0, 0);  // own process group: a terminal Ctrl-C reaches only the orchestrator,
+                    // which checkpoints and then stops the services itself
     if (getppid() != parent) _exit(127);
     dup2(fds[1], STDOUT_FILENO);
     std::vector<char*> argv;

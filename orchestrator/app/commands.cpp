@@ -1,0 +1,245 @@
+// SPDX-License-Identifier: MIT
+#include "commands.hpp"
+
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <thread>
+
+#include "sadr/common/log.hpp"
+#include "sadr/orchestrator/atomic_file.hpp"
+#include "sadr/orchestrator/ensemble_accumulator.hpp"
+#include "sadr/orchestrator/run_manifest.hpp"
+#include "sadr/orchestrator/scene_loader.hpp"
+
+namespace sadr::orchestrator {
+namespace fs = std::filesystem;
+namespace {
+
+std::atomic<bool> g_interrupt{false};
+extern "C" void on_signal(int) {
+  g_interrupt.store(true);
+}
+
+void install_signal_handlers() {
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  std::signal(SIGPIPE, SIG_IGN);
+}
+
+bool is_service_failure(const Error& e) {
+  return e.code() == StatusCode::kUnavailable || e.code() == StatusCode::kDeadlineExceeded;
+}
+
+void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
+  std::fprintf(stderr, "sadr: scene '%s' (%zu particles, %zu species, %zu reactions), t_end = %g\n",
+               scene.name.c_str(), scene.particles.size(), scene.species.size(),
+               scene.reactions.size(), scene.time.end);
+  std::fprintf(stderr, "sadr: plan (services as %s):\n", std::string(to_string(o.mode)).c_str());
+  for (const auto& line : plan.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
+}
+
+fs::path default_output(const Scene& scene) {
+  if (!scene.output.directory.empty()) return scene.output.directory;  // relative to the cwd
+  std::string stamp = utc_now_iso8601();  // 2026-11-22T03:00:00Z -> 20261122-030000
+  std::string compact;
+  for (char c : stamp) {
+    if (std::isdigit(static_cast<unsigned char>(c))) compact.push_back(c);
+    if (c == 'T') compact.push_back('-');
+  }
+  return fs::path("runs") / (scene.name + "-" + compact);
+}
+
+void prepare_output(const fs::path& dir, bool force) {
+  if (fs::exists(dir) && !fs::is_empty(dir)) {
+    if (!force) {
+      throw InvalidArgument("output directory '" + dir.string() +
+                            "' exists and is not empty (pass --force to overwrite, or choose "
+                            "another with --output)");
+    }
+    for (const auto& sub : {"frames", "checkpoint", "ensemble"}) fs::remove_all(dir / sub);
+  }
+  ensure_directory(dir);
+}
+
+/// One realization, relaunching its services from the last checkpoint up to
+/// `restarts` times when a service dies or stops answering.
+RunResult run_realization(const Scene& scene, const Plan& plan, const CliOptions& o,
+                          std::uint64_t realization, const fs::path& out,
+                          const LoadedCheckpoint* resume, const RunOptions& base) {
+  std::optional<LoadedCheckpoint> reloaded;
+  for (int attempt = 0;; ++attempt) {
+    ServiceSet services(o.mode, plan, o.remote, std::to_string(realization));
+    RunOptions ro = base;
+    ro.output_dir = out;
+    ro.realization = realization;
+    ro.mode = std::string(to_string(o.mode));
+    ro.timeout = std::chrono::milliseconds(static_cast<long>(o.timeout_s * 1000));
+    ro.interrupt = &g_interrupt;
+    ro.liveness = [&services] { services.check_alive(); };
+    ro.resume = reloaded ? &*reloaded : resume;
+    if (o.stop_at >= 0) ro.stop_at = o.stop_at;
+    try {
+      return run_coupled(scene, plan, services.endpoints(), ro);
+    } catch (const Error& e) {
+      if (!is_service_failure(e) || attempt >= o.restarts || o.mode == ServiceMode::kRemote) throw;
+      const fs::path cp = out / "checkpoint" / std::string(kCheckpointManifestName);
+      log::warn("realization ", realization, ": ", e.what(), "; restarting the services (",
+                attempt + 1, " of ", o.restarts, ")",
+                fs::exists(cp) ? " from the last checkpoint" : " from t = 0 (no checkpoint yet)");
+      if (fs::exists(cp)) {
+        reloaded = load_checkpoint(cp, scene.source_hash);
+      } else {
+        reloaded.reset();
+      }
+    }
+  }
+}
+
+}  // namespace
+
+int report_failure(const std::exception& e) {
+  std::fprintf(stderr, "sadr: error: %s\n", e.what());
+  if (dynamic_cast<const IoError*>(&e)) return kExitIoFailure;
+  if (const auto* err = dynamic_cast<const Error*>(&e)) {
+    switch (err->code()) {
+      case StatusCode::kInvalidArgument:
+      case StatusCode::kNotFound:
+      case StatusCode::kFailedPrecondition:
+        return kExitInvalidInput;
+      case StatusCode::kNumericalFailure:
+      case StatusCode::kOutOfRange:
+        return kExitNumericalFailure;
+      case StatusCode::kAborted:
+        return kExitInterrupted;
+      default:
+        return kExitServiceFailure;
+    }
+  }
+  return kExitServiceFailure;
+}
+
+int cmd_validate(const CliOptions& o) {
+  try {
+    const Scene scene = load_scene(o.scene);
+    const Plan plan = make_plan(scene);
+    print_plan(scene, plan, o);
+    std::printf("%s: valid\n", o.scene.c_str());
+    return kExitOk;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return kExitInvalidInput;
+  }
+}
+
+int cmd_run(const CliOptions& o) {
+  install_signal_handlers();
+  const Scene scene = load_scene(o.scene);
+  const Plan plan = make_plan(scene);
+  print_plan(scene, plan, o);
+  const fs::path out = o.output.empty() ? default_output(scene) : fs::path(o.output);
+  prepare_output(out, o.force);
+  std::fprintf(stderr, "sadr: writing to %s\n", out.string().c_str());
+
+  const int r_count = std::max(1, o.realizations);
+  if (r_count == 1) {
+    RunOptions base;
+    base.progress = !o.quiet;
+    const RunResult r = run_realization(scene, plan, o, 0, out, nullptr, base);
+    if (r.interrupted) {
+      std::fprintf(stderr, "sadr: stopped at t = %g; resume with: sadr resume %s\n", r.time,
+                   r.last_checkpoint ? r.last_checkpoint->string().c_str() : "(no checkpoint)");
+      return g_interrupt ? kExitInterrupted : kExitOk;
+    }
+    return kExitOk;
+  }
+
+  // Ensemble: R realizations on `jobs` workers, each with its own services.
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const int jobs = std::min(r_count, o.jobs > 0 ? o.jobs : static_cast<int>(cores));
+  if (jobs > 1) setenv("OMP_NUM_THREADS", "1", 0);  // one core per realization
+  std::vector<std::string> species = scene.output.species;
+  EnsembleAccumulator ensemble(species, scene.particles.size());
+  std::mutex mutex;
+  std::atomic<int> next{0}, done{0};
+  std::exception_ptr failure;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto worker = [&] {
+    for (int r; (r = next++) < r_count && !g_interrupt;) {
+      // Frames of this realization, added to the ensemble once it succeeds.
+      std::map<std::size_t, std::pair<double, std::vector<SpeciesColumn>>> frames;
+      RunOptions base;
+      base.progress = false;
+      base.on_frame = [&frames](std::size_t k, double t, std::span<const SpeciesColumn> cols) {
+        frames[k] = {t, std::vector<SpeciesColumn>(cols.begin(), cols.end())};
+      };
+      char name[32];
+      std::snprintf(name, sizeof name, "realization_%04d", r);
+      try {
+        const RunResult res = run_realization(scene, plan, o, static_cast<std::uint64_t>(r),
+                                              out / name, nullptr, base);
+        std::lock_guard lock(mutex);
+        if (!res.interrupted) {
+          for (const auto& [k, f] : frames) ensemble.add(k, f.first, f.second);
+        }
+        const int d = ++done;
+        const double el =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (!o.quiet) {
+          std::fprintf(stderr, "sadr: realization %d done (%d/%d), elapsed %.1f s, ETA %.1f s\n", r,
+                       d, r_count, el, el / d * (r_count - d));
+        }
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+        g_interrupt = true;  // stop the other workers (they checkpoint)
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  ensure_directory(out / "ensemble");
+  for (std::size_t k = 0; k < ensemble.frame_count(); ++k) {
+    if (ensemble.realizations(k) == 0) continue;
+    char name[48];
+    std::snprintf(name, sizeof name, "ensemble/frame_%06zu.csv", k);
+    ensemble.write_csv(k, out / name, scene.particles.ids);
+  }
+  std::fprintf(stderr, "sadr: %d realizations; ensemble mean/variance in %s\n", done.load(),
+               (out / "ensemble").string().c_str());
+  return g_interrupt ? kExitInterrupted : kExitOk;
+}
+
+int cmd_resume(const CliOptions& o) {
+  install_signal_handlers();
+  LoadedCheckpoint cp = load_checkpoint(o.checkpoint, "");
+  const Scene scene = load_scene(cp.manifest.scene_path);
+  if (scene.source_hash != cp.manifest.scene_hash) {
+    throw InvalidArgument("checkpoint '" + o.checkpoint + "' was written for scene '" +
+                          cp.manifest.scene_path + "' with hash " + cp.manifest.scene_hash +
+                          ", but that file now has hash " + scene.source_hash +
+                          " (the scene changed since the run started)");
+  }
+  const Plan plan = make_plan(scene);
+  print_plan(scene, plan, o);
+  fs::path manifest_path = o.checkpoint;
+  if (fs::is_directory(manifest_path)) manifest_path /= std::string(kCheckpointManifestName);
+  const fs::path out =
+      o.output.empty() ? manifest_path.parent_path().parent_path() : fs::path(o.output);
+  std::fprintf(stderr, "sadr: resuming realization %llu at t = %g (step %llu) into %s\n",
+               static_cast<unsigned long long>(cp.manifest.realization), cp.manifest.time,
+               static_cast<unsigned long long>(cp.manifest.step_index), out.string().c_str());
+  RunOptions base;
+  base.progress = !o.quiet;
+  const RunResult r = run_realization(scene, plan, o, cp.manifest.realization, out, &cp, base);
+  return r.interrupted && g_interrupt ? kExitInterrupted : kExitOk;
+}
+
+}  // namespace sadr::orchestrator

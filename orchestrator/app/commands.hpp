@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+/// \file commands.hpp
+/// The orchestrator's subcommands (run, resume, validate) and exit codes.
+#pragma once
+
+#include <string>
+
+#include "sadr/orchestrator/coupled_run.hpp"
+#include "service_set.hpp"
+
+namespace sadr::orchestrator {
+
+/// Exit codes of the `sadr` CLI (documented in docs/scene-format.md and README.md).
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitInvalidInput = 1,
+  kExitUsage = 2,
+  kExitServiceFailure = 3,
+  kExitNumericalFailure = 4,
+  kExitIoFailure = 5,
+  kExitInterrupted = 130,
+};
+
+struct CliOptions {
+  std::string scene;       ///< scene file (run, validate)
+  std::string checkpoint;  ///< checkpoint.json or its directory (resume)
+  std::string output;      ///< output directory ("" = default)
+  bool force = false;      ///< overwrite a non-empty output directory
+  ServiceMode mode = ServiceMode::kProcesses;
+  ServiceEndpoints remote;  ///< --fluid / --ssa
+  int realizations = 1;
+  int jobs = 0;            ///< parallel realizations (0 = number of cores)
+  int restarts = 0;        ///< --restart-on-failure N
+  double timeout_s = 120;  ///< per service call
+  double stop_at = -1;     ///< checkpoint and stop at this simulated time (< 0: never)
+  bool quiet = false;      ///< no progress display
+};
+
+int cmd_validate(const CliOptions& options);
+int cmd_run(const CliOptions& options);
+int cmd_resume(const CliOptions& options);
+
+/// Maps an exception to an exit code and prints it ("sadr: error: ...").
+int report_failure(const std::exception& e);
+
+}  // namespace sadr::orchestrator

@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+// sadr: the orchestrator CLI. Parses the command line and hands over to commands.cpp.
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+#include "sadr/common/log.hpp"
+#include "sadr/common/version.hpp"
+
+using namespace sadr::orchestrator;
+
+int main(int argc, char** argv) {
+  CLI::App app{std::string("sadr ") + sadr::kVersion +
+               ": stochastic advection-diffusion-reaction in particle fluids.\n"
+               "A particle fluid (fluid_service: SDPD or static) carries molecules whose\n"
+               "reactions and diffusion are simulated exactly (ssa_service: Next Subvolume\n"
+               "Method on the particle diffusion graph), coupled by Lie or Strang splitting.\n\n"
+               "Examples:\n"
+               "  sadr validate examples/static_reaction_diffusion.yaml\n"
+               "  sadr run examples/annihilation_1d_stochastic.yaml --output runs/ann17\n"
+               "  sadr run examples/annihilation_1d_stochastic.yaml --realizations 100\n"
+               "  sadr resume runs/ann17/checkpoint/checkpoint.json\n\n"
+               "Exit codes: 0 ok, 1 invalid scene/input, 2 usage, 3 service failure,\n"
+               "4 numerical failure, 5 I/O failure, 130 interrupted (checkpoint written).\n"
+               "Scene format: docs/scene-format.md. Outputs: <output>/run.json, frames/,\n"
+               "<name>.pvd (ParaView), checkpoint/, ensemble/ (with --realizations)."};
+  app.require_subcommand(1);
+  CliOptions o;
+  std::string mode = "processes", level = "info";
+  bool embedded = false;
+
+  auto add_service_options = [&](CLI::App* cmd) {
+    cmd->add_flag("--embedded", embedded,
+                  "run the services as threads in this process (inproc transport) instead of "
+                  "child processes");
+    cmd->add_option("--fluid", o.remote.fluid,
+                    "endpoint of a running fluid_service (e.g. tcp://host:5555); with --ssa, "
+                    "nothing is launched");
+    cmd->add_option("--ssa", o.remote.ssa, "endpoint of a running ssa_service");
+    cmd->add_option("--timeout", o.timeout_s, "seconds to wait for a service reply")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    cmd->add_option("--restart-on-failure", o.restarts,
+                    "relaunch services that die or hang, from the last checkpoint, up to N times")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--stop-at", o.stop_at,
+                    "write a checkpoint and stop at this simulated time (resume later)");
+    cmd->add_option("-o,--output", o.output,
+                    "output directory (default: output.directory of the scene, else "
+                    "runs/<name>-<UTC time>)");
+    cmd->add_flag("-q,--quiet", o.quiet, "no progress display");
+    cmd->add_option("--log-level", level, "error|warn|info|debug")
+        ->check(CLI::IsMember({"error", "warn", "info", "debug"}));
+  };
+
+  auto* validate =
+      app.add_subcommand("validate", "parse and check a scene; exit 0 if valid, 1 if not");
+  validate->add_option("scene", o.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
+
+  auto* run = app.add_subcommand("run", "run a scene (one realization, or an ensemble)");
+  run->add_option("scene", o.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
+  run->add_option("-r,--realizations", o.realizations,
+                  "independent realizations with seeds derived from the scene seed; each in "
+                  "realization_NNNN/, plus per-frame ensemble mean and variance in ensemble/")
+      ->check(CLI::PositiveNumber);
+  run->add_option("-j,--jobs", o.jobs, "realizations run at once (default: number of cores)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("--force", o.force, "overwrite a non-empty output directory");
+  add_service_options(run);
+
+  auto* resume =
+      app.add_subcommand("resume", "continue a run from its checkpoint, bit-identically");
+  resume->add_option("checkpoint", o.checkpoint, "checkpoint.json or the checkpoint directory")
+      ->required()
+      ->check(CLI::ExistingPath);
+  add_service_options(resume);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? kExitOk : kExitUsage;
+  }
+  if (level == "error") sadr::log::set_level(sadr::log::Level::kError);
+  if (level == "warn") sadr::log::set_level(sadr::log::Level::kWarn);
+  if (level == "debug") sadr::log::set_level(sadr::log::Level::kDebug);
+  sadr::log::set_component("sadr");
+  if (embedded) o.mode = ServiceMode::kEmbedded;
+  if (!o.remote.fluid.empty() || !o.remote.ssa.empty()) {
+    if (embedded) {
+      std::fprintf(stderr, "sadr: --embedded cannot be combined with --fluid/--ssa\n");
+      return kExitUsage;
+    }
+    o.mode = ServiceMode::kRemote;
+  }
+  try {
+    if (*validate) return cmd_validate(o);
+    if (*run) return cmd_run(o);
+    return cmd_resume(o);
+  } catch (const std::exception& e) {
+    return report_failure(e);
+  }
+}

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: MIT
+/// \file scene_messages.hpp
+/// Scene -> wire messages: the Init requests of fluid_service and ssa_service.
+/// Only what each service needs goes on the wire (Plan::fluid_species,
+/// Plan::ssa_species, the regions they reference).
+#pragma once
+
+#include <cstdint>
+
+#include "sadr/fluid/v1/fluid_service.pb.h"
+#include "sadr/orchestrator/plan.hpp"
+#include "sadr/orchestrator/scene.hpp"
+#include "sadr/ssa/v1/ssa_service.pb.h"
+
+namespace sadr::orchestrator {
+
+/// @param seed realization seed (realization_seed(scene.seed, r))
+/// @throws InvalidArgument for scene features the services do not support yet
+fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std::uint64_t seed);
+
+/// @param particles the particle state the first graph is built from
+ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::uint64_t seed,
+                                   const ParticleState& particles);
+
+}  // namespace sadr::orchestrator

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/orchestrator/scene_messages.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "sadr/wire/convert.hpp"
+
+namespace sadr::orchestrator {
+namespace {
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+void to_proto(const Species& in, common::v1::Species& out, std::set<std::string>& regions_used) {
+  out.set_name(in.name);
+  out.set_stochastic(in.stochastic);
+  out.set_diffusivity(in.diffusivity);
+  for (const auto& b : in.boundaries) {
+    auto* w = out.add_walls();
+    w->set_region(b.region);
+    w->set_value(b.value);
+    switch (b.condition) {
+      case BoundaryCondition::kNone:
+        w->set_condition(common::v1::WALL_CONDITION_NONE);
+        break;
+      case BoundaryCondition::kDirichlet:
+        w->set_condition(common::v1::WALL_CONDITION_DIRICHLET);
+        break;
+      case BoundaryCondition::kNeumann:
+        w->set_condition(common::v1::WALL_CONDITION_NEUMANN);
+        break;
+      case BoundaryCondition::kFree:
+        throw InvalidArgument("species '" + in.name + "', region '" + b.region +
+                              "': boundary condition 'free' (wall particles that exchange "
+                              "molecules) is not supported by the services yet");
+    }
+    if (!b.region.empty()) regions_used.insert(b.region);
+  }
+}
+
+void to_proto(const Reaction& in, common::v1::Reaction& out, std::set<std::string>& regions_used) {
+  out.set_name(in.name);
+  for (const auto& e : in.reactants) {
+    auto* p = out.add_reactants();
+    p->set_species(e.species);
+    p->set_count(e.count);
+  }
+  for (const auto& e : in.products) {
+    auto* p = out.add_products();
+    p->set_species(e.species);
+    p->set_count(e.count);
+  }
+  out.set_rate(in.rate);
+  for (auto k : in.kinds) out.add_kinds(static_cast<std::uint32_t>(k));
+  for (const auto& r : in.regions) {
+    out.add_regions(r);
+    regions_used.insert(r);
+  }
+}
+
+template <class RepeatedRegions>
+void add_regions(const Scene& scene, const std::set<std::string>& used, RepeatedRegions* out) {
+  for (const auto& name : used) {
+    const Region* r = scene.find_region(name);
+    if (!r) throw InvalidArgument("unknown region '" + name + "'");
+    auto* m = out->Add();
+    m->set_name(name);
+    m->mutable_particles()->Assign(r->particles.begin(), r->particles.end());
+  }
+}
+
+}  // namespace
+
+fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std::uint64_t seed) {
+  fluid::v1::InitRequest init;
+  auto* m = init.mutable_model();
+  const auto& f = scene.fluid;
+  m->set_backend(f.backend);
+  wire::to_proto(scene.box, *m->mutable_box());
+  m->set_smoothing_length(f.smoothing_length);
+  m->set_kernel(f.kernel);
+  m->set_reference_density(f.reference_density);
+  m->set_sound_speed(f.sound_speed);
+  m->set_shear_viscosity(f.shear_viscosity);
+  m->set_temperature(f.temperature);
+  for (double g : f.gravity) m->add_gravity(g);
+  m->set_seed(seed);
+  m->set_max_time_step(f.max_time_step);
+  m->set_force_time_step(f.force_time_step);
+  (*m->mutable_options())["density"] = f.density_mode;
+  for (const auto& [k, v] : f.parameters) (*m->mutable_parameters())[k] = v;
+  if (f.boussinesq) {
+    m->set_buoyancy_species(f.boussinesq->species);
+    m->set_buoyancy_coefficient(f.boussinesq->coefficient);
+    m->set_buoyancy_reference(f.boussinesq->reference);
+    for (double d : f.boussinesq->direction) m->add_buoyancy_direction(d);
+  }
+  std::set<std::string> regions_used;
+  for (const auto& s : scene.species) {
+    if (!contains(plan.fluid_species, s.name)) continue;
+    to_proto(s, *m->add_species(), regions_used);
+    if (!s.stochastic) {
+      auto* c = init.mutable_concentrations()->add_species();
+      c->set_name(s.name);
+      c->mutable_concentrations()->Assign(s.initial.begin(), s.initial.end());
+    }
+  }
+  for (const auto& r : scene.reactions) {
+    if (!r.stochastic) to_proto(r, *m->add_reactions(), regions_used);
+  }
+  add_regions(scene, regions_used, m->mutable_regions());
+  wire::to_proto(scene.particles, *init.mutable_particles(), /*with_velocities=*/true);
+  return init;
+}
+
+ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::uint64_t seed,
+                                   const ParticleState& particles) {
+  ssa::v1::InitRequest init;
+  auto* m = init.mutable_model();
+  wire::to_proto(scene.box, *m->mutable_box());
+  m->set_smoothing_length(scene.fluid.smoothing_length);
+  m->set_regularization(scene.ssa.regularization);
+  m->set_convention(scene.ssa.convention == JumpConvention::kSymmetric
+                        ? ssa::v1::JUMP_CONVENTION_SYMMETRIC
+                        : ssa::v1::JUMP_CONVENTION_VOLUME);
+  m->set_seed(seed);
+  std::set<std::string> regions_used;
+  for (const auto& s : scene.species) {
+    if (!s.stochastic || !contains(plan.ssa_species, s.name)) continue;
+    to_proto(s, *m->add_species(), regions_used);
+    auto* c = init.mutable_counts()->add_species();
+    c->set_name(s.name);
+    auto* counts = c->mutable_counts();
+    counts->Reserve(static_cast<int>(s.initial.size()));
+    for (double v : s.initial) counts->Add(static_cast<std::int64_t>(std::llround(v)));
+  }
+  for (const auto& r : scene.reactions) {
+    if (r.stochastic) to_proto(r, *m->add_reactions(), regions_used);
+  }
+  add_regions(scene, regions_used, m->mutable_regions());
+  wire::to_proto(particles, *init.mutable_particles(), /*with_velocities=*/false);
+  return init;
+}
+
+}  // namespace sadr::orchestrator

@@ -1,0 +1,210 @@
+// SPDX-License-Identifier: MIT
+// The `sadr` CLI end to end: real child processes (ipc), embedded threads
+// (inproc) and remote services (tcp loopback) give byte-identical frames for
+// the same seed; run to T == run to T/2 + resume; a killed ssa_service is
+// detected, named, and the checkpoint survives; validate exit codes.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "sadr/orchestrator/checkpoint.hpp"
+#include "sadr/orchestrator/service_process.hpp"
+
+namespace sadr::orchestrator {
+namespace {
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+std::string bin(const char* name) {
+  return std::string(SADR_BINARY_DIR) + "/bin/" + name;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Runs a shell command; returns its exit code; output goes to `log`.
+int run(const std::string& cmd, const fs::path& log) {
+  const int rc = std::system((cmd + " > '" + log.string() + "' 2>&1").c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+/// A fresh directory per test.
+fs::path scratch(const std::string& name) {
+  const fs::path d =
+      fs::temp_directory_path() / ("sadr-cli-" + std::to_string(getpid()) + "-" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+/// 1D A + B -> 0 between Dirichlet walls (drawert2019 4.1, N = 17, N_b = 100),
+/// short end time: a few hundred thousand events.
+std::string annihilation_scene(double end, const std::string& outputs, double checkpoint_every) {
+  std::ostringstream s;
+  s << "name: ann\n"
+       "dimension: 1\n"
+       "box: {lower: [0.0], upper: [1.0], periodic: [false]}\n"
+       "regions:\n"
+       "  - {name: left_wall, shape: box, lower: [0.0], upper: [0.0]}\n"
+       "  - {name: right_wall, shape: box, lower: [1.0], upper: [1.0]}\n"
+       "particles:\n"
+       "  spacing: 0.0625\n"
+       "  density: 1.0\n"
+       "  fill:\n"
+       "    - {region: left_wall, kind: wall}\n"
+       "    - {region: right_wall, kind: wall}\n"
+       "    - {kind: fluid}\n"
+       "fluid: {backend: static, h_over_dx: 1.8}\n"
+       "species:\n"
+       "  - name: A\n"
+       "    diffusivity: 0.1\n"
+       "    boundaries:\n"
+       "      - {region: left_wall, condition: dirichlet, count: 100}\n"
+       "      - {region: right_wall, condition: dirichlet, count: 0}\n"
+       "  - name: B\n"
+       "    diffusivity: 0.1\n"
+       "    boundaries:\n"
+       "      - {region: left_wall, condition: dirichlet, count: 0}\n"
+       "      - {region: right_wall, condition: dirichlet, count: 100}\n"
+       "reactions:\n"
+       "  - {name: annihilation, equation: \"A + B -> 0\", rate: 0.1}\n"
+       "time: {coupling_step: 0.01, end: "
+    << end << "}\n"
+    << "output:\n  times: " << outputs << "\n  formats: [csv, vtu]\n";
+  if (checkpoint_every > 0) s << "  checkpoint_every: " << checkpoint_every << "\n";
+  s << "seed: 42\n";
+  return s.str();
+}
+
+fs::path write_scene(const fs::path& dir, const std::string& text) {
+  const fs::path p = dir / "scene.yaml";
+  std::ofstream(p) << text;
+  return p;
+}
+
+std::vector<fs::path> frames(const fs::path& out) {
+  std::vector<fs::path> f;
+  for (const auto& e : fs::directory_iterator(out / "frames")) f.push_back(e.path());
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+void expect_same_frames(const fs::path& a, const fs::path& b) {
+  const auto fa = frames(a), fb = frames(b);
+  ASSERT_EQ(fa.size(), fb.size());
+  ASSERT_FALSE(fa.empty());
+  for (std::size_t i = 0; i < fa.size(); ++i) {
+    EXPECT_EQ(fa[i].filename(), fb[i].filename());
+    EXPECT_TRUE(read_file(fa[i]) == read_file(fb[i])) << fa[i] << " differs from " << fb[i];
+  }
+}
+
+TEST(OrchestratorCli, ProcessesEmbeddedAndRemoteGiveIdenticalFrames) {
+  const fs::path d = scratch("modes");
+  const fs::path scene = write_scene(d, annihilation_scene(0.3, "[0.1, 0.2, 0.3]", 0));
+  const std::string sadr = bin("sadr") + " run " + scene.string() + " -q ";
+  ASSERT_EQ(run(sadr + "-o " + (d / "proc").string(), d / "proc.log"), 0)
+      << read_file(d / "proc.log");
+  ASSERT_EQ(run(sadr + "--embedded -o " + (d / "emb").string(), d / "emb.log"), 0)
+      << read_file(d / "emb.log");
+  ServiceProcess ssa(bin("ssa_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "ssa_service");
+  ServiceProcess fluid(bin("fluid_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "fluid_service");
+  ASSERT_EQ(run(sadr + "--ssa " + ssa.endpoint() + " --fluid " + fluid.endpoint() + " -o " +
+                    (d / "tcp").string(),
+                d / "tcp.log"),
+            0)
+      << read_file(d / "tcp.log");
+  expect_same_frames(d / "proc", d / "emb");
+  expect_same_frames(d / "proc", d / "tcp");
+  // The frames hold molecules (the run did something).
+  const std::string last = read_file(d / "proc" / "frames" / "frame_000003.csv");
+  EXPECT_EQ(last.rfind("time,id,kind,x,y,z,vx,vy,vz,density,mass,A,B\n", 0), 0u) << last;
+  EXPECT_NE(last.find("\n0.29999999999999999,1,0,0.0625,"), std::string::npos) << last;
+  EXPECT_TRUE(fs::exists(d / "proc" / "ann.pvd"));
+  EXPECT_TRUE(fs::exists(d / "proc" / "run.json"));
+  if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
+}
+
+TEST(OrchestratorCli, RunHalfThenResumeEqualsFullRun) {
+  const fs::path d = scratch("resume");
+  const fs::path scene = write_scene(d, annihilation_scene(0.4, "[0.1, 0.2, 0.3, 0.4]", 0.1));
+  const std::string sadr = bin("sadr") + " ";
+  ASSERT_EQ(run(sadr + "run " + scene.string() + " -q -o " + (d / "full").string(), d / "a.log"), 0)
+      << read_file(d / "a.log");
+  ASSERT_EQ(run(sadr + "run " + scene.string() + " -q --stop-at 0.2 -o " + (d / "half").string(),
+                d / "b.log"),
+            0)
+      << read_file(d / "b.log");
+  EXPECT_EQ(frames(d / "half").size(), 2u * 3u);  // t = 0.1, 0.2 as csv + vtu (+ none at 0)
+  ASSERT_EQ(run(sadr + "resume " + (d / "half" / "checkpoint").string() + " -q", d / "c.log"), 0)
+      << read_file(d / "c.log");
+  expect_same_frames(d / "full", d / "half");
+  if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
+}
+
+TEST(OrchestratorCli, KilledSsaServiceIsNamedAndTheCheckpointSurvives) {
+  const fs::path d = scratch("kill");
+  // Long enough that we can kill it mid-run; checkpoints every 0.05.
+  const fs::path scene = write_scene(d, annihilation_scene(1000.0, "[1000.0]", 0.05));
+  const fs::path out = d / "out";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string log = (d / "run.log").string();
+    freopen(log.c_str(), "w", stderr);
+    execl(bin("sadr").c_str(), "sadr", "run", scene.c_str(), "-q", "-o", out.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const fs::path cp = out / "checkpoint" / "checkpoint.json";
+  for (int i = 0; i < 600 && !fs::exists(cp); ++i) std::this_thread::sleep_for(50ms);
+  ASSERT_TRUE(fs::exists(cp)) << "no checkpoint within 30 s";
+  // Find the ssa_service child and kill it hard.
+  const std::string find =
+      "pgrep -P " + std::to_string(pid) + " -x ssa_service > '" + (d / "pid").string() + "'";
+  ASSERT_EQ(std::system(find.c_str()), 0);
+  const pid_t child = std::stoi(read_file(d / "pid"));
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 3) << read_file(d / "run.log");
+  const std::string log = read_file(d / "run.log");
+  EXPECT_NE(log.find("ssa_service"), std::string::npos) << log;
+  EXPECT_NE(log.find("killed by signal 9"), std::string::npos) << log;
+  // The last good checkpoint is intact and loadable.
+  const LoadedCheckpoint loaded = load_checkpoint(cp, "");
+  EXPECT_GT(loaded.manifest.step_index, 0u);
+  EXPECT_EQ(loaded.blobs.count("ssa"), 1u);
+  if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
+}
+
+TEST(OrchestratorCli, ValidateExitCodes) {
+  const fs::path d = scratch("validate");
+  const fs::path good = write_scene(d, annihilation_scene(0.1, "[0.1]", 0));
+  EXPECT_EQ(run(bin("sadr") + " validate " + good.string(), d / "good.log"), 0)
+      << read_file(d / "good.log");
+  std::string bad_text = annihilation_scene(0.1, "[0.1]", 0);
+  bad_text.replace(bad_text.find("diffusivity: 0.1"), 16, "diffusivty: 0.1");
+  const fs::path bad = d / "bad.yaml";
+  std::ofstream(bad) << bad_text;
+  EXPECT_EQ(run(bin("sadr") + " validate " + bad.string(), d / "bad.log"), 1);
+  const std::string log = read_file(d / "bad.log");
+  EXPECT_NE(log.find("bad.yaml:"), std::string::npos) << log;
+  EXPECT_NE(log.find("did you mean 'diffusivity'"), std::string::npos) << log;
+  EXPECT_EQ(run(bin("sadr") + " frobnicate", d / "usage.log"), 2);
+  if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
+}
+
+}  // namespace
+}  // namespace sadr::orchestrator
