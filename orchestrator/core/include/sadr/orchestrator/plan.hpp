@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+/// \file plan.hpp
+/// What a run needs, decided from the scene alone (printed at start and
+/// stored in the run manifest). Skip rules:
+///  - no ssa_service without stochastic species;
+///  - no fluid stepping for the static backend (the SSA graph is built once);
+///    no fluid_service at all when it is static and has no deterministic species;
+///  - no thermal noise at k_B T = 0 (no random numbers drawn by the fluid);
+///  - no back-transfer of copy numbers to the fluid unless a fluid term depends
+///    on a stochastic species (Boussinesq);
+///  - only the species each service needs go on the wire.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+#include "sadr/orchestrator/scene.hpp"
+
+namespace sadr::orchestrator {
+
+struct Plan {
+  bool fluid_service = true;                ///< launch fluid_service
+  bool fluid_stepping = true;               ///< advance the fluid every coupling step (not static)
+  bool ssa_service = false;                 ///< launch ssa_service
+  bool graph_rebuild_each_step = false;     ///< particles move: the SSA graph is rebuilt every step
+  bool particles_to_ssa_each_step = false;  ///< positions/densities/masses fluid -> ssa per step
+  bool thermal_noise = false;  ///< the fluid draws thermal noise (k_B T > 0, moving backend)
+  bool back_transfer = false;  ///< copy numbers ssa -> fluid before every fluid step
+  Splitting splitting = Splitting::kLie;
+  int fluid_calls_per_step = 0;                    ///< 0, 1 (Lie) or 2 (Strang half steps)
+  std::vector<std::string> fluid_species;          ///< on the fluid wire (deterministic + fed back)
+  std::vector<std::string> ssa_species;            ///< on the SSA wire (stochastic)
+  std::vector<std::string> back_transfer_species;  ///< stochastic species the fluid reads
+  std::size_t fluid_reactions = 0;                 ///< reactions among deterministic species
+  std::size_t ssa_reactions = 0;                   ///< reactions among stochastic species
+  std::vector<std::string> skipped;                ///< one line per skipped piece, with the reason
+
+  /// Human-readable lines ("fluid_service: sdpd, stepping every coupling step", ...).
+  [[nodiscard]] std::vector<std::string> lines() const;
+  [[nodiscard]] nlohmann::json to_json() const;
+};
+
+/// The plan of `scene` (a pure function of it).
+Plan make_plan(const Scene& scene);
+
+}  // namespace sadr::orchestrator

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+/// \file run_manifest.hpp
+/// The run manifest (run.json in each output folder): what was run, with
+/// which scene (hash), seed and build, how long each part took, and the plan.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace sadr::orchestrator {
+
+struct RunManifest {
+  std::string scene_path;
+  std::string scene_hash;  ///< content_hash() of the scene file bytes
+  std::uint64_t scene_seed = 0;
+  std::uint64_t realization = 0;
+  std::uint64_t seed = 0;         ///< realization seed actually used
+  std::string sadr_version;       ///< defaults to sadr::kVersion
+  unsigned protocol_version = 0;  ///< defaults to sadr::kProtocolVersion
+  std::string mode;               ///< "processes", "embedded", "remote"
+  std::string started_utc;        ///< ISO 8601, e.g. "2026-11-22T03:00:00Z"
+  std::string finished_utc;
+  std::string status = "running";           ///< "running", "ok", "failed: <reason>", "interrupted"
+  std::uint64_t steps = 0;                  ///< coupling steps completed
+  double time = 0.0;                        ///< simulated time reached [time]
+  std::map<std::string, double> timings_s;  ///< wall-clock seconds per part ("fluid", "ssa", ...)
+  std::vector<std::string> frames;          ///< frame files written, in order
+  nlohmann::json plan;                      ///< Plan::to_json()
+
+  RunManifest();
+  [[nodiscard]] nlohmann::json to_json() const;
+  /// Writes to_json() to `path` atomically (pretty-printed).
+  void write(const std::filesystem::path& path) const;
+};
+
+/// Current UTC time as ISO 8601 ("YYYY-MM-DDTHH:MM:SSZ").
+std::string utc_now_iso8601();
+
+}  // namespace sadr::orchestrator

@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: MIT
+/// \file scene.hpp
+/// The validated, fully resolved content of a scene file: the particles, the
+/// named regions resolved to particle indices, the fluid model, the chemistry,
+/// the time stepping, the output schedule and the seed. Everything the fluid
+/// and SSA services need (FluidModel, SsaModel, Species, Reaction,
+/// WallBoundary, RegionMembership in proto/sadr/.../v1) is here, in plain C++
+/// types; the conversion to protobuf lives outside this library.
+///
+/// Units: one consistent system chosen by the scene author (SI or reduced);
+/// "d" is the dimension. docs/scene-format.md documents every key.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sadr/common/particle_state.hpp"
+#include "sadr/orchestrator/region.hpp"
+
+namespace sadr::orchestrator {
+
+/// Per-species condition on the non-fluid particles of one region.
+/// The first three match sadr.common.v1.WallCondition.
+enum class BoundaryCondition {
+  kNone,       ///< no-flux: the wall particles take no part for this species
+  kDirichlet,  ///< the particles are reservoirs held at `value` [molecules/length^d]
+  kNeumann,    ///< inward flux density `value` [molecules/(length^(d-1) time)]
+  kFree,       ///< the particles exchange molecules like fluid particles but do not move
+               ///< (needs WALL_CONDITION support on the wire; see docs/scene-format.md)
+};
+std::string_view to_string(BoundaryCondition condition);
+
+struct SpeciesBoundary {
+  std::string region;  ///< region name (its particles are all non-fluid)
+  BoundaryCondition condition = BoundaryCondition::kNone;
+  double value = 0.0;  ///< see BoundaryCondition
+};
+
+struct Species {
+  std::string name;          ///< [A-Za-z_][A-Za-z0-9_]*, unique
+  bool stochastic = true;    ///< integer copy numbers (ssa_service) or concentrations (fluid)
+  double diffusivity = 0.0;  ///< kappa >= 0 [length^2/time]
+  std::vector<SpeciesBoundary> boundaries;
+  /// Initial value per particle (size N): copy numbers [molecules] (whole
+  /// numbers) for a stochastic species, concentrations [molecules/length^d]
+  /// for a deterministic one. Dirichlet particles already hold their value.
+  std::vector<double> initial;
+};
+
+struct StoichiometryEntry {
+  std::string species;
+  std::uint32_t count = 1;  ///< >= 1
+  bool operator==(const StoichiometryEntry&) const = default;
+};
+
+/// One irreversible mass-action reaction ("A + B -> C"); reversible ones in
+/// the file become two of these ("name" and "name_reverse").
+struct Reaction {
+  std::string name;
+  std::vector<StoichiometryEntry> reactants;  ///< total order <= 2
+  std::vector<StoichiometryEntry> products;
+  /// Rate constant in concentration units: order 0 [molecules/(length^d time)],
+  /// order 1 [1/time], order 2 [length^d/(molecules time)], A + A defined by
+  /// dC/dt = -k C^2 (docs/scene-format.md).
+  double rate = 0.0;
+  std::vector<ParticleKind> kinds;   ///< where it may fire; default {fluid}
+  std::vector<std::string> regions;  ///< empty = everywhere
+  bool stochastic = true;            ///< among stochastic species (SSA) or deterministic (fluid)
+  [[nodiscard]] unsigned order() const;
+};
+
+/// Boussinesq body force g_b beta (C_s - C_ref) along `direction`.
+struct Boussinesq {
+  std::string species;
+  double coefficient = 0.0;                        ///< g_b * beta [length^(d+2)/(time^2 molecules)]
+  double reference = 0.0;                          ///< C_ref [molecules/length^d]
+  std::array<double, 3> direction{0.0, 1.0, 0.0};  ///< unit vector
+};
+
+struct FluidSettings {
+  std::string backend = "sdpd";   ///< "sdpd", "static" or "tdpd"
+  double smoothing_length = 0.0;  ///< h [length]
+  std::string kernel = "lucy";
+  double reference_density = 1.0;           ///< rho_0 [mass/length^d]
+  double sound_speed = 0.0;                 ///< c_0 [length/time] (sdpd)
+  double shear_viscosity = 0.0;             ///< eta [mass/(length^(d-2) time)]
+  double temperature = 0.0;                 ///< k_B T [energy]; 0 = no thermal noise
+  std::array<double, 3> gravity{};          ///< body force per mass [length/time^2]
+  std::string density_mode = "continuity";  ///< "continuity" or "summation"
+  std::optional<Boussinesq> boussinesq;
+  double max_time_step = 0.0;  ///< upper bound on the fluid sub-step [time]; 0 = none
+  bool force_time_step = false;
+  std::map<std::string, double> parameters;  ///< backend-specific numbers
+};
+
+enum class Splitting { kLie, kStrang };
+std::string_view to_string(Splitting splitting);
+
+struct TimeSettings {
+  double coupling_step = 0.0;  ///< tau > 0 [time]
+  double end = 0.0;            ///< end time >= 0 [time]; the run starts at 0
+  Splitting splitting = Splitting::kLie;
+};
+
+enum class OutputFormat { kVtu, kVtp, kCsv };
+std::string_view to_string(OutputFormat format);
+
+struct OutputSettings {
+  std::string directory;      ///< "" = chosen by the CLI
+  std::vector<double> times;  ///< sorted, unique, in [0, end], always ends with `end` [time]
+  std::vector<OutputFormat> formats{OutputFormat::kVtu, OutputFormat::kCsv};
+  std::vector<std::string> species;  ///< species written per frame (default all)
+  double checkpoint_every = 0.0;     ///< simulated time between checkpoints; 0 = only on signal
+};
+
+enum class JumpConvention { kSymmetric, kVolume };
+std::string_view to_string(JumpConvention convention);
+
+struct SsaSettings {
+  JumpConvention convention = JumpConvention::kSymmetric;
+  double regularization = 0.01;  ///< eps_h in r^2/(r^2 + eps_h h^2), >= 0
+};
+
+/// A loaded, validated scene. Build it with load_scene() or parse_scene().
+struct Scene {
+  std::string name;
+  std::string description;
+  std::filesystem::path source_path;  ///< the file it came from ("" for text)
+  /// "fnv1a64:<16 hex>" of the scene file bytes, followed by the bytes of
+  /// the particle CSV file when the scene reads one.
+  std::string source_hash;
+  Box box;
+  double lattice_spacing = 0.0;  ///< dx [length]; 0 when the particles came from a file
+  ParticleState particles;       ///< ids = 0..N-1, velocities present
+  std::vector<Region> regions;   ///< named regions with resolved membership
+  FluidSettings fluid;
+  std::vector<Species> species;
+  std::vector<Reaction> reactions;
+  TimeSettings time;
+  OutputSettings output;
+  SsaSettings ssa;
+  std::uint64_t seed = 0;
+
+  [[nodiscard]] const Species* find_species(std::string_view name) const;
+  [[nodiscard]] const Region* find_region(std::string_view name) const;
+  [[nodiscard]] std::size_t stochastic_species_count() const;
+  [[nodiscard]] std::size_t deterministic_species_count() const;
+};
+
+}  // namespace sadr::orchestrator

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/orchestrator/plan.hpp"
+
+#include <algorithm>
+
+#include "sadr/orchestrator/diagnostics.hpp"
+
+namespace sadr::orchestrator {
+
+namespace {
+std::string join(const std::vector<std::string>& v) {
+  if (v.empty()) return "(none)";
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + v[i];
+  return s;
+}
+}  // namespace
+
+Plan make_plan(const Scene& scene) {
+  Plan p;
+  const bool is_static = scene.fluid.backend == "static";
+  std::vector<std::string> deterministic;
+  for (const auto& sp : scene.species) {
+    if (sp.stochastic) {
+      p.ssa_species.push_back(sp.name);
+    } else {
+      deterministic.push_back(sp.name);
+    }
+  }
+  for (const auto& rx : scene.reactions) (rx.stochastic ? p.ssa_reactions : p.fluid_reactions)++;
+
+  p.ssa_service = !p.ssa_species.empty();
+  if (!p.ssa_service) p.skipped.push_back("ssa_service: not launched (no stochastic species)");
+
+  p.fluid_stepping = !is_static || !deterministic.empty();
+  p.fluid_service = p.fluid_stepping;
+  if (is_static && deterministic.empty()) {
+    p.skipped.push_back(
+        "fluid_service: not launched (static backend and no deterministic species; particles "
+        "come from the scene)");
+  } else if (is_static) {
+    p.skipped.push_back(
+        "particle motion: none (static backend; the fluid only integrates the deterministic "
+        "species)");
+  }
+  const bool moving = !is_static;
+  p.graph_rebuild_each_step = p.ssa_service && moving;
+  p.particles_to_ssa_each_step = p.graph_rebuild_each_step;
+  if (p.ssa_service && !moving) {
+    p.skipped.push_back("ssa graph rebuild: built once (particles do not move)");
+  }
+  p.thermal_noise = moving && scene.fluid.temperature > 0.0;
+  if (moving && !p.thermal_noise) {
+    p.skipped.push_back("thermal noise: none (k_B T = 0: no random numbers in the fluid)");
+  }
+  if (const auto& b = scene.fluid.boussinesq; b && p.ssa_service && moving) {
+    if (std::find(p.ssa_species.begin(), p.ssa_species.end(), b->species) != p.ssa_species.end()) {
+      p.back_transfer = true;
+      p.back_transfer_species.push_back(b->species);
+    }
+  }
+  if (p.ssa_service && !p.back_transfer) {
+    p.skipped.push_back(
+        "back-transfer ssa -> fluid: none (no fluid term depends on a "
+        "stochastic species)");
+  }
+  if (p.fluid_service) {
+    p.fluid_species = deterministic;
+    for (const auto& s : p.back_transfer_species) p.fluid_species.push_back(s);
+  }
+  p.splitting = scene.time.splitting;
+  if (p.fluid_stepping && p.ssa_service) {
+    p.fluid_calls_per_step = p.splitting == Splitting::kStrang ? 2 : 1;
+  } else {
+    p.fluid_calls_per_step = p.fluid_stepping ? 1 : 0;
+    if (p.splitting == Splitting::kStrang) {
+      p.skipped.push_back("strang splitting: not needed (only one operator runs)");
+    }
+  }
+  return p;
+}
+
+std::vector<std::string> Plan::lines() const {
+  std::vector<std::string> out;
+  out.push_back(std::string("fluid_service: ") +
+                (fluid_service
+                     ? (fluid_stepping ? "launched, advanced every coupling step" : "launched")
+                     : "not launched") +
+                (fluid_service ? "; species on the wire: " + join(fluid_species) +
+                                     "; reactions: " + std::to_string(fluid_reactions)
+                               : ""));
+  out.push_back(std::string("ssa_service: ") +
+                (ssa_service ? "launched; species on the wire: " + join(ssa_species) +
+                                   "; reactions: " + std::to_string(ssa_reactions) +
+                                   (graph_rebuild_each_step ? "; graph rebuilt every step"
+                                                            : "; graph built once")
+                             : "not launched"));
+  out.push_back("splitting: " + std::string(to_string(splitting)) + ", " +
+                std::to_string(fluid_calls_per_step) + " fluid call(s) per coupling step");
+  out.push_back(std::string("thermal noise: ") + (thermal_noise ? "on" : "off"));
+  out.push_back("back-transfer ssa -> fluid: " +
+                (back_transfer ? join(back_transfer_species) : std::string("off")));
+  for (const auto& s : skipped) out.push_back("skipped: " + s);
+  return out;
+}
+
+nlohmann::json Plan::to_json() const {
+  return nlohmann::json{
+      {"fluid_service", fluid_service},
+      {"fluid_stepping", fluid_stepping},
+      {"ssa_service", ssa_service},
+      {"graph_rebuild_each_step", graph_rebuild_each_step},
+      {"particles_to_ssa_each_step", particles_to_ssa_each_step},
+      {"thermal_noise", thermal_noise},
+      {"back_transfer", back_transfer},
+      {"splitting", std::string(to_string(splitting))},
+      {"fluid_calls_per_step", fluid_calls_per_step},
+      {"fluid_species", fluid_species},
+      {"ssa_species", ssa_species},
+      {"back_transfer_species", back_transfer_species},
+      {"fluid_reactions", fluid_reactions},
+      {"ssa_reactions", ssa_reactions},
+      {"skipped", skipped},
+  };
+}
+
+}  // namespace sadr::orchestrator

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/orchestrator/run_manifest.hpp"
+
+#include <ctime>
+
+#include "sadr/common/version.hpp"
+#include "sadr/orchestrator/atomic_file.hpp"
+
+namespace sadr::orchestrator {
+
+RunManifest::RunManifest() : sadr_version(kVersion), protocol_version(kProtocolVersion) {}
+
+nlohmann::json RunManifest::to_json() const {
+  return {{"format", "sadr-run"},
+          {"format_version", 1},
+          {"scene_path", scene_path},
+          {"scene_hash", scene_hash},
+          {"scene_seed", scene_seed},
+          {"realization", realization},
+          {"seed", seed},
+          {"sadr_version", sadr_version},
+          {"protocol_version", protocol_version},
+          {"mode", mode},
+          {"started_utc", started_utc},
+          {"finished_utc", finished_utc},
+          {"status", status},
+          {"steps", steps},
+          {"time", time},
+          {"timings_s", timings_s},
+          {"frames", frames},
+          {"plan", plan}};
+}
+
+void RunManifest::write(const std::filesystem::path& path) const {
+  write_file_atomic(path, to_json().dump(2) + "\n");
+}
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace sadr::orchestrator

@@ -1,0 +1,357 @@
+// SPDX-License-Identifier: MIT
+// Scene sections "species" and "reactions".
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+
+#include "sadr/common/status.hpp"
+#include "sadr/orchestrator/reaction_equation.hpp"
+#include "scene_parts.hpp"
+
+namespace sadr::orchestrator::detail {
+
+namespace {
+
+constexpr std::array<std::string_view, 5> kSpeciesKeys{"name", "stochastic", "diffusivity",
+                                                       "initial", "boundaries"};
+constexpr std::array<std::string_view, 3> kInitialKeys{"region", "count", "concentration"};
+constexpr std::array<std::string_view, 4> kBoundaryKeys{"region", "condition", "value", "count"};
+constexpr std::array<std::string_view, 4> kConditions{"dirichlet", "neumann", "none", "free"};
+constexpr std::array<std::string_view, 8> kReactionKeys{
+    "name", "equation", "reactants", "products", "rate", "reverse_rate", "regions", "kinds"};
+constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
+
+/// Copy number for a concentration in particle i: nearest whole number of C V_i.
+double to_count(const ParticleState& p, std::size_t i, double concentration) {
+  return std::round(concentration * p.volume(i));
+}
+
+void read_initial(SceneContext& ctx, const Field& sp_field, Species& sp) {
+  YamlReader& r = ctx.reader;
+  const ParticleState& p = ctx.scene.particles;
+  if (ctx.particles_ok) sp.initial.assign(p.size(), 0.0);
+  const Field list = YamlReader::child(sp_field, "initial");
+  if (!r.expect_sequence(list)) return;
+  for (std::size_t k = 0; k < list.node.size(); ++k) {
+    const Field f = YamlReader::element(list, k);
+    if (!r.expect_map(f, kInitialKeys)) continue;
+    const std::string name = r.string(f, "region", false).value_or(std::string(kAllRegion));
+    const Region* rg = lookup_region(ctx, YamlReader::child(f, "region"), name);
+    const auto count = r.number(f, "count", Bound::kNonNegative, "molecules per particle", false);
+    const auto conc =
+        r.number(f, "concentration", Bound::kNonNegative, "molecules/length^d", false);
+    const bool has_count = YamlReader::present(YamlReader::child(f, "count"));
+    const bool has_conc = YamlReader::present(YamlReader::child(f, "concentration"));
+    if (has_count == has_conc) {
+      r.error(f,
+              "give exactly one of 'count' (molecules per particle) or 'concentration' "
+              "(molecules/length^d)");
+      continue;
+    }
+    if (count && sp.stochastic && *count != std::floor(*count)) {
+      r.error(YamlReader::child(f, "count"), format_number(*count) +
+                                                 " is not allowed for the stochastic species '" +
+                                                 sp.name + "'; allowed: a whole number >= 0");
+      continue;
+    }
+    if (!rg || !ctx.particles_ok || !(count || conc)) continue;
+    for (const std::uint32_t i : rg->particles) {
+      if (count) {
+        sp.initial[i] = sp.stochastic ? *count : *count / p.volume(i);
+      } else {
+        sp.initial[i] = sp.stochastic ? to_count(p, i, *conc) : *conc;
+      }
+    }
+  }
+}
+
+void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
+  YamlReader& r = ctx.reader;
+  const ParticleState& p = ctx.scene.particles;
+  const Field list = YamlReader::child(sp_field, "boundaries");
+  if (!r.expect_sequence(list)) return;
+  std::vector<int> owner(ctx.particles_ok ? p.size() : 0, -1);
+  for (std::size_t k = 0; k < list.node.size(); ++k) {
+    const Field f = YamlReader::element(list, k);
+    if (!r.expect_map(f, kBoundaryKeys)) continue;
+    SpeciesBoundary b;
+    const auto name = r.string(f, "region", true);
+    const Field rf = YamlReader::child(f, "region");
+    const Region* rg = name ? lookup_region(ctx, rf, *name) : nullptr;
+    const auto cond = r.choice(f, "condition", kConditions, true, "boundary condition");
+    if (!cond) continue;
+    b.condition = *cond == "dirichlet" ? BoundaryCondition::kDirichlet
+                  : *cond == "neumann" ? BoundaryCondition::kNeumann
+                  : *cond == "free"    ? BoundaryCondition::kFree
+                                       : BoundaryCondition::kNone;
+    const Field count_field = YamlReader::child(f, "count");
+    std::optional<double> count;
+    if (YamlReader::present(count_field)) {
+      if (b.condition != BoundaryCondition::kDirichlet) {
+        r.error(count_field, "'count' applies to condition 'dirichlet' only");
+      } else if (YamlReader::present(YamlReader::child(f, "value"))) {
+        r.error(count_field,
+                "give either 'value' (concentration) or 'count' (molecules per "
+                "particle), not both");
+      } else {
+        count = r.number(f, "count", Bound::kNonNegative, "molecules per particle", true);
+        if (!count) continue;
+      }
+    }
+    if (count) {
+      // Converted to the concentration count / V; needs equal volumes in the region.
+      if (rg && ctx.particles_ok) {
+        double volume = 0.0;
+        bool uniform = true;
+        for (const std::uint32_t i : rg->particles) {
+          if (p.kind(i) == ParticleKind::kFluid) continue;
+          if (volume == 0.0) volume = p.volume(i);
+          uniform = uniform && std::abs(p.volume(i) - volume) <= 1e-12 * volume;
+        }
+        if (!uniform) {
+          r.error(count_field, "'count' needs equal particle volumes (m/rho) in region '" +
+                                   rg->name + "'; give 'value' (a concentration) instead");
+        } else if (volume > 0.0) {
+          b.value = *count / volume;
+        }
+      }
+    } else if (b.condition == BoundaryCondition::kDirichlet) {
+      b.value = r.number(f, "value", Bound::kNonNegative, "molecules/length^d", true).value_or(0);
+    } else if (b.condition == BoundaryCondition::kNeumann) {
+      b.value =
+          r.number(f, "value", Bound::kAny, "molecules/(length^(d-1) time)", true).value_or(0);
+    } else if (YamlReader::present(YamlReader::child(f, "value"))) {
+      r.error(YamlReader::child(f, "value"),
+              "a value has no meaning for condition '" + *cond + "'; remove it");
+    }
+    if (!rg) continue;
+    b.region = rg->name == kAllRegion ? std::string() : rg->name;
+    if (ctx.particles_ok) {
+      std::size_t fluid = 0;
+      for (const std::uint32_t i : rg->particles) {
+        if (p.kind(i) == ParticleKind::kFluid) {
+          ++fluid;
+        } else if (owner[i] >= 0) {
+          r.error(rf, "region '" + rg->name + "' overlaps the region of " + list.path + "[" +
+                          std::to_string(owner[i]) + "] (particle " + std::to_string(i) +
+                          "); a particle can have one condition per species");
+          break;
+        } else {
+          owner[i] = static_cast<int>(k);
+        }
+      }
+      if (rg->particles.size() == fluid) {
+        r.error(rf, "region '" + rg->name +
+                        "' holds no wall, inlet or outlet particles; "
+                        "boundary conditions apply to non-fluid particles");
+      }
+      if (b.condition == BoundaryCondition::kDirichlet && !sp.initial.empty()) {
+        for (const std::uint32_t i : rg->particles) {
+          if (p.kind(i) == ParticleKind::kFluid) continue;
+          sp.initial[i] = sp.stochastic ? to_count(p, i, b.value) : b.value;
+        }
+      }
+    }
+    sp.boundaries.push_back(b);
+  }
+}
+
+std::vector<ParticleKind> read_kinds(SceneContext& ctx, const Field& f) {
+  std::vector<ParticleKind> kinds;
+  auto names = ctx.reader.string_list(f, "kinds", false);
+  if (!names) return {ParticleKind::kFluid};
+  for (const auto& k : *names) {
+    if (auto kind = parse_kind(k)) {
+      kinds.push_back(*kind);
+    } else {
+      ctx.reader.error(
+          YamlReader::child(f, "kinds"),
+          "unknown particle kind '" + k + "' (allowed: " + join_names(kKindNames) + ")");
+    }
+  }
+  return kinds;
+}
+
+std::vector<StoichiometryEntry> read_stoichiometry(SceneContext& ctx, const Field& parent,
+                                                   std::string_view key) {
+  std::vector<StoichiometryEntry> out;
+  const Field f = YamlReader::child(parent, key);
+  if (!YamlReader::present(f)) return out;
+  if (!f.node.IsMap()) {
+    ctx.reader.error(f, "expected a map species: coefficient (e.g. {A: 1, B: 1})");
+    return out;
+  }
+  for (const auto& kv : f.node) {
+    const std::string name = kv.first.Scalar();
+    if (auto n = ctx.reader.integer(f, name, 1, 1000, true)) {
+      out.push_back({name, static_cast<std::uint32_t>(*n)});
+    }
+  }
+  return out;
+}
+
+/// Checks the species of a reaction; returns whether they are stochastic
+/// (nullopt if unknown or mixed; reported).
+std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where,
+                                           const Reaction& rx) {
+  std::vector<std::string_view> known;
+  for (const auto& sp : ctx.scene.species) known.push_back(sp.name);
+  std::optional<bool> stochastic;
+  bool ok = true;
+  std::string first_name;
+  for (const auto* side : {&rx.reactants, &rx.products}) {
+    for (const auto& e : *side) {
+      const Species* sp = ctx.scene.find_species(e.species);
+      if (!sp) {
+        std::string msg = "unknown species '" + e.species + "'";
+        if (auto near = nearest_name(e.species, known)) msg += "; did you mean '" + *near + "'?";
+        msg += " (declared: " + (known.empty() ? std::string("none") : join_names(known)) + ")";
+        ctx.reader.error(where, msg);
+        ok = false;
+        continue;
+      }
+      if (!stochastic) {
+        stochastic = sp->stochastic;
+        first_name = sp->name;
+      } else if (*stochastic != sp->stochastic) {
+        ctx.reader.error(
+            where, "mixes " + std::string(*stochastic ? "stochastic" : "deterministic") +
+                       " species '" + first_name + "' with " +
+                       (sp->stochastic ? "stochastic" : "deterministic") + " species '" + sp->name +
+                       "'; a reaction runs either in the SSA or in the fluid");
+        ok = false;
+      }
+    }
+  }
+  if (rx.order() > 2) {
+    ctx.reader.error(where, "order " + std::to_string(rx.order()) +
+                                " is not allowed; allowed: mass-action order 0, 1 or 2 "
+                                "(split higher-order reactions into elementary steps)");
+    ok = false;
+  }
+  if (!ok) return std::nullopt;
+  return stochastic.value_or(true);
+}
+
+}  // namespace
+
+void read_species(SceneContext& ctx, const Field& root) {
+  YamlReader& r = ctx.reader;
+  const Field list = YamlReader::child(root, "species");
+  if (r.expect_sequence(list)) {
+    std::set<std::string> names;
+    for (std::size_t k = 0; k < list.node.size(); ++k) {
+      const Field f = YamlReader::element(list, k);
+      if (!r.expect_map(f, kSpeciesKeys)) continue;
+      Species sp;
+      sp.name = r.string(f, "name", true).value_or("");
+      const Field nf = YamlReader::child(f, "name");
+      if (!sp.name.empty() && !valid_identifier(sp.name)) {
+        r.error(nf,
+                "'" + sp.name + "' is not a valid species name; allowed: [A-Za-z_][A-Za-z0-9_]*");
+      } else if (!sp.name.empty() && !names.insert(sp.name).second) {
+        r.error(nf, "species name '" + sp.name + "' is already used; species names must be unique");
+      }
+      sp.stochastic = r.boolean(f, "stochastic", false).value_or(true);
+      sp.diffusivity =
+          r.number(f, "diffusivity", Bound::kNonNegative, "length^2/time", true).value_or(0.0);
+      read_initial(ctx, f, sp);
+      read_boundaries(ctx, f, sp);
+      ctx.scene.species.push_back(std::move(sp));
+    }
+  }
+  if (ctx.boussinesq && ctx.scene.fluid.boussinesq) {
+    const std::string& name = ctx.scene.fluid.boussinesq->species;
+    if (!name.empty() && !ctx.scene.find_species(name)) {
+      std::vector<std::string_view> known;
+      for (const auto& sp : ctx.scene.species) known.push_back(sp.name);
+      std::string msg = "unknown species '" + name + "'";
+      if (auto near = nearest_name(name, known)) msg += "; did you mean '" + *near + "'?";
+      r.error(YamlReader::child(*ctx.boussinesq, "species"), msg);
+    }
+  }
+}
+
+void read_reactions(SceneContext& ctx, const Field& root) {
+  YamlReader& r = ctx.reader;
+  const Field list = YamlReader::child(root, "reactions");
+  if (!r.expect_sequence(list)) return;
+  std::set<std::string> names;
+  for (std::size_t k = 0; k < list.node.size(); ++k) {
+    const Field f = YamlReader::element(list, k);
+    if (f.node.IsScalar()) {
+      r.error(f, "'" + f.node.Scalar() + "' needs a rate; write {equation: \"" + f.node.Scalar() +
+                     "\", rate: k}");
+      continue;
+    }
+    if (!r.expect_map(f, kReactionKeys)) continue;
+    Reaction rx;
+    bool reversible = false;
+    const Field eqf = YamlReader::child(f, "equation");
+    const bool structured = YamlReader::present(YamlReader::child(f, "reactants")) ||
+                            YamlReader::present(YamlReader::child(f, "products"));
+    if (YamlReader::present(eqf) == structured) {
+      r.error(f, "give either 'equation' (e.g. \"A + B -> C\") or 'reactants'/'products' maps");
+      continue;
+    }
+    if (structured) {
+      rx.reactants = read_stoichiometry(ctx, f, "reactants");
+      rx.products = read_stoichiometry(ctx, f, "products");
+    } else if (auto text = r.string(f, "equation", true)) {
+      try {
+        ReactionEquation eq = parse_reaction_equation(*text);
+        rx.reactants = std::move(eq.reactants);
+        rx.products = std::move(eq.products);
+        reversible = eq.reversible;
+      } catch (const InvalidArgument& e) {
+        r.error(eqf, e.what());
+        continue;
+      }
+    }
+    rx.name = r.string(f, "name", false).value_or("reaction" + std::to_string(k));
+    const std::string unit = rx.order() == 0   ? "molecules/(length^d time)"
+                             : rx.order() == 1 ? "1/time"
+                                               : "length^d/(molecules time)";
+    rx.rate = r.number(f, "rate", Bound::kNonNegative, unit, true).value_or(0.0);
+    const Field rev = YamlReader::child(f, "reverse_rate");
+    std::optional<double> reverse;
+    if (reversible) {
+      reverse = r.number(f, "reverse_rate", Bound::kNonNegative, "per the reverse order", true);
+    } else if (YamlReader::present(rev)) {
+      r.error(rev, "only a reversible reaction ('<->') has a reverse_rate");
+    }
+    rx.kinds = read_kinds(ctx, f);
+    if (auto regions = r.string_list(f, "regions", false)) {
+      for (const auto& name : *regions) {
+        if (const Region* rg = lookup_region(ctx, YamlReader::child(f, "regions"), name)) {
+          if (rg->name == kAllRegion) {
+            rx.regions.clear();
+            break;
+          }
+          rx.regions.push_back(rg->name);
+        }
+      }
+    }
+    const auto stochastic = check_reaction_species(ctx, eqf.node.IsDefined() ? eqf : f, rx);
+    if (stochastic) rx.stochastic = *stochastic;
+    Reaction back = rx;
+    back.name = rx.name + "_reverse";
+    std::swap(back.reactants, back.products);
+    back.rate = reverse.value_or(0.0);
+    if (reversible && back.order() > 2) {
+      r.error(eqf, "the reverse reaction has order " + std::to_string(back.order()) +
+                       "; allowed: order 0, 1 or 2");
+    }
+    for (const Reaction* one : {&rx, &back}) {
+      if (one == &back && !reversible) break;
+      if (!names.insert(one->name).second) {
+        r.error(YamlReader::child(f, "name"),
+                "reaction name '" + one->name + "' is already used; names must be unique");
+      }
+      ctx.scene.reactions.push_back(*one);
+    }
+  }
+}
+
+}  // namespace sadr::orchestrator::detail

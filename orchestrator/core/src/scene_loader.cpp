@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/orchestrator/scene_loader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "sadr/common/status.hpp"
+#include "sadr/orchestrator/hash.hpp"
+#include "scene_parts.hpp"
+
+namespace sadr::orchestrator {
+
+namespace detail {
+
+double SceneContext::tolerance() const {
+  double extent = 0.0;
+  for (int a = 0; a < scene.box.dimension; ++a) extent = std::max(extent, scene.box.length(a));
+  return 1e-9 * std::max(extent, 1e-300);
+}
+
+std::optional<ParticleKind> parse_kind(std::string_view name) {
+  if (name == "fluid") return ParticleKind::kFluid;
+  if (name == "wall") return ParticleKind::kWall;
+  if (name == "inlet") return ParticleKind::kInlet;
+  if (name == "outlet") return ParticleKind::kOutlet;
+  return std::nullopt;
+}
+
+bool valid_identifier(std::string_view name) {
+  if (name.empty()) return false;
+  auto alpha = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+  if (!alpha(name[0])) return false;
+  return std::all_of(name.begin(), name.end(),
+                     [&](char c) { return alpha(c) || (c >= '0' && c <= '9'); });
+}
+
+namespace {
+
+constexpr std::array<std::string_view, 13> kTopKeys{
+    "name",    "description", "dimension", "box",    "regions", "particles", "fluid",
+    "species", "reactions",   "time",      "output", "seed",    "ssa"};
+
+void read_box(SceneContext& ctx, const Field& root) {
+  YamlReader& r = ctx.reader;
+  Scene& s = ctx.scene;
+  const auto dim = r.integer(root, "dimension", 1, 3, true);
+  if (dim) {
+    ctx.dimension_ok = true;
+    s.box.dimension = static_cast<int>(*dim);
+    s.particles.dimension = s.box.dimension;
+  }
+  const Field box = YamlReader::child(root, "box");
+  if (!YamlReader::present(box)) {
+    r.error(box, "missing; required: a map with lower, upper and optional periodic");
+    return;
+  }
+  static constexpr std::array<std::string_view, 3> kKeys{"lower", "upper", "periodic"};
+  if (!r.expect_map(box, kKeys) || !dim) return;
+  const int d = static_cast<int>(*dim);
+  const auto lo = r.vector(box, "lower", d, "length", true);
+  const auto hi = r.vector(box, "upper", d, "length", true);
+  const Field per = YamlReader::child(box, "periodic");
+  bool ok = lo && hi;
+  if (YamlReader::present(per)) {
+    if (!per.node.IsSequence() || per.node.size() != static_cast<std::size_t>(d)) {
+      r.error(per, "expected a list of " + std::to_string(d) + " true/false values (one per axis)");
+      ok = false;
+    } else {
+      for (int a = 0; a < d; ++a) {
+        const Field e = YamlReader::element(per, static_cast<std::size_t>(a));
+        const std::string& t = e.node.IsScalar() ? e.node.Scalar() : std::string();
+        if (t == "true" || t == "false") {
+          s.box.periodic[static_cast<std::size_t>(a)] = t == "true";
+        } else {
+          r.error(e, "'" + t + "' is not allowed; allowed: true or false");
+          ok = false;
+        }
+      }
+    }
+  }
+  if (!ok) return;
+  for (int a = 0; a < d; ++a) {
+    const auto ua = static_cast<std::size_t>(a);
+    s.box.lo[ua] = (*lo)[ua];
+    s.box.hi[ua] = (*hi)[ua];
+    if (!(s.box.hi[ua] > s.box.lo[ua])) {
+      r.error(YamlReader::child(box, "upper"),
+              "axis " + std::to_string(a) + ": upper " + format_number(s.box.hi[ua]) +
+                  " must be greater than lower " + format_number(s.box.lo[ua]));
+      ok = false;
+    }
+  }
+  for (int a = d; a < 3; ++a) {
+    s.box.lo[static_cast<std::size_t>(a)] = 0.0;
+    s.box.hi[static_cast<std::size_t>(a)] = 0.0;
+  }
+  ctx.geometry_ok = ok;
+}
+
+void read_ssa(SceneContext& ctx, const Field& root) {
+  YamlReader& r = ctx.reader;
+  const Field ssa = YamlReader::child(root, "ssa");
+  if (!YamlReader::present(ssa)) return;
+  static constexpr std::array<std::string_view, 2> kKeys{"convention", "regularization"};
+  if (!r.expect_map(ssa, kKeys)) return;
+  static constexpr std::array<std::string_view, 2> kConventions{"symmetric", "volume"};
+  if (auto c = r.choice(ssa, "convention", kConventions, false, "jump convention")) {
+    ctx.scene.ssa.convention =
+        *c == "volume" ? JumpConvention::kVolume : JumpConvention::kSymmetric;
+  }
+  ctx.scene.ssa.regularization =
+      r.number_or(ssa, "regularization", 0.01, Bound::kNonNegative, "dimensionless");
+}
+
+}  // namespace
+}  // namespace detail
+
+Scene parse_scene(std::string_view text, const std::filesystem::path& source_name) {
+  using namespace detail;
+  Diagnostics diag(source_name.string());
+  Scene scene;
+  scene.source_path = source_name;
+  scene.source_hash = content_hash(text);
+  YAML::Node doc;
+  try {
+    doc = YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    diag.error({e.mark.line + 1, e.mark.column + 1}, "", "YAML syntax error: " + e.msg);
+    diag.throw_if_any();
+  }
+  YamlReader reader(diag);
+  Field root{doc, "", {1, 1}};
+  if (!reader.expect_map(root, kTopKeys)) diag.throw_if_any();
+
+  SceneContext ctx{reader, scene};
+  ctx.base_dir = source_name.parent_path();
+  scene.name = reader.string(root, "name", false).value_or(source_name.stem().string());
+  scene.description = reader.string(root, "description", false).value_or("");
+  read_box(ctx, root);
+  read_fluid(ctx, root);
+  read_regions(ctx, root);
+  read_particles(ctx, root);
+  read_species(ctx, root);
+  read_reactions(ctx, root);
+  read_time_and_output(ctx, root);
+  read_ssa(ctx, root);
+  scene.seed = reader.integer(root, "seed", 0, UINT64_MAX, false).value_or(0);
+  if (!ctx.particle_file_bytes.empty()) {
+    // A changed particle file is a changed scene (checkpoints refuse it).
+    scene.source_hash = content_hash(std::string(text) + ctx.particle_file_bytes);
+  }
+  diag.throw_if_any();
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  const std::string bytes = read_file_bytes(path);
+  return parse_scene(bytes, path);
+}
+
+// ---- small Scene members -------------------------------------------------
+
+std::string_view to_string(BoundaryCondition condition) {
+  switch (condition) {
+    case BoundaryCondition::kNone:
+      return "none";
+    case BoundaryCondition::kDirichlet:
+      return "dirichlet";
+    case BoundaryCondition::kNeumann:
+      return "neumann";
+    case BoundaryCondition::kFree:
+      return "free";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(Splitting splitting) {
+  return splitting == Splitting::kStrang ? "strang" : "lie";
+}
+
+std::string_view to_string(OutputFormat format) {
+  switch (format) {
+    case OutputFormat::kVtu:
+      return "vtu";
+    case OutputFormat::kVtp:
+      return "vtp";
+    case OutputFormat::kCsv:
+      return "csv";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(JumpConvention convention) {
+  return convention == JumpConvention::kVolume ? "volume" : "symmetric";
+}
+
+unsigned Reaction::order() const {
+  unsigned n = 0;
+  for (const auto& e : reactants) n += e.count;
+  return n;
+}
+
+const Species* Scene::find_species(std::string_view n) const {
+  for (const auto& sp : species) {
+    if (sp.name == n) return &sp;
+  }
+  return nullptr;
+}
+
+const Region* Scene::find_region(std::string_view n) const {
+  for (const auto& rg : regions) {
+    if (rg.name == n) return &rg;
+  }
+  return nullptr;
+}
+
+std::size_t Scene::stochastic_species_count() const {
+  return static_cast<std::size_t>(
+      std::count_if(species.begin(), species.end(), [](const Species& s) { return s.stochastic; }));
+}
+
+std::size_t Scene::deterministic_species_count() const {
+  return species.size() - stochastic_species_count();
+}
+
+}  // namespace sadr::orchestrator

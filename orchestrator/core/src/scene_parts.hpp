@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+/// \file scene_parts.hpp
+/// (private) The pieces of the scene loader, one per section of the file.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include "sadr/orchestrator/scene.hpp"
+#include "yaml_reader.hpp"
+
+namespace sadr::orchestrator::detail {
+
+/// State shared by the section readers during one load.
+struct SceneContext {
+  YamlReader& reader;
+  Scene& scene;
+  std::filesystem::path base_dir{};   ///< directory of the scene file (for relative paths)
+  bool dimension_ok = false;          ///< `dimension` valid (vectors have that length)
+  bool geometry_ok = false;           ///< dimension and box valid
+  bool particles_ok = false;          ///< particles built and regions resolved
+  std::optional<double> h_over_dx{};  ///< fluid.h_over_dx, resolved once dx is known
+  Region all_region{};                ///< the built-in region "all" (every particle)
+  std::string particle_file_bytes{};  ///< the particle CSV file, folded into the scene hash
+  std::optional<Field> boussinesq{};  ///< fluid.boussinesq, checked once species are known
+  /// Absolute tolerance for region and box membership [length].
+  [[nodiscard]] double tolerance() const;
+};
+
+inline constexpr std::string_view kAllRegion = "all";
+
+void read_regions(SceneContext& ctx, const Field& root);
+void read_particles(SceneContext& ctx, const Field& root);
+void read_fluid(SceneContext& ctx, const Field& root);
+void read_species(SceneContext& ctx, const Field& root);
+void read_reactions(SceneContext& ctx, const Field& root);
+void read_time_and_output(SceneContext& ctx, const Field& root);
+
+/// Parses "fluid", "wall", "inlet", "outlet" (nullopt otherwise).
+std::optional<ParticleKind> parse_kind(std::string_view name);
+/// True for [A-Za-z_][A-Za-z0-9_]*.
+bool valid_identifier(std::string_view name);
+/// The region named `name` ("all" included), reporting an unknown name with
+/// the nearest known one; nullptr if unknown.
+const Region* lookup_region(SceneContext& ctx, const Field& where, const std::string& name);
+
+}  // namespace sadr::orchestrator::detail

@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+// Scene sections "time" and "output": coupling step, end time, splitting,
+// output schedule and formats.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "scene_parts.hpp"
+
+namespace sadr::orchestrator::detail {
+
+namespace {
+constexpr std::array<std::string_view, 3> kTimeKeys{"coupling_step", "end", "splitting"};
+constexpr std::array<std::string_view, 2> kSplittings{"lie", "strang"};
+constexpr std::array<std::string_view, 7> kOutputKeys{
+    "directory", "every", "times", "include_initial", "formats", "species", "checkpoint_every"};
+constexpr std::array<std::string_view, 3> kFormats{"vtu", "vtp", "csv"};
+
+/// Sorted output times in [0, end] with near-duplicates (closer than
+/// 1e-9 of the end time or of the period) merged into the later one, and
+/// the end time itself always last (the final state is always written).
+std::vector<double> normalise_times(std::vector<double> times, double end, double scale) {
+  times.push_back(end);
+  std::sort(times.begin(), times.end());
+  std::vector<double> out;
+  const double snap = 1e-9 * std::max(scale, 1e-300);
+  for (const double t : times) {
+    if (!out.empty() && t - out.back() <= snap)
+      out.back() = std::max(t, out.back());
+    else
+      out.push_back(t);
+  }
+  out.back() = end;
+  return out;
+}
+}  // namespace
+
+void read_time_and_output(SceneContext& ctx, const Field& root) {
+  YamlReader& r = ctx.reader;
+  Scene& s = ctx.scene;
+  const Field time = YamlReader::child(root, "time");
+  bool time_ok = false;
+  if (!YamlReader::present(time)) {
+    r.error(time, "missing; required: a map with coupling_step and end");
+  } else if (r.expect_map(time, kTimeKeys)) {
+    const auto tau = r.number(time, "coupling_step", Bound::kPositive, "time", true);
+    const auto end = r.number(time, "end", Bound::kNonNegative, "time", true);
+    if (auto sp = r.choice(time, "splitting", kSplittings, false, "splitting")) {
+      s.time.splitting = *sp == "strang" ? Splitting::kStrang : Splitting::kLie;
+    }
+    if (tau) s.time.coupling_step = *tau;
+    if (end) s.time.end = *end;
+    time_ok = tau && end;
+  }
+
+  std::vector<double> times;
+  bool include_initial = true;
+  double every = 0.0;
+  const Field out = YamlReader::child(root, "output");
+  if (YamlReader::present(out) && r.expect_map(out, kOutputKeys)) {
+    s.output.directory = r.string(out, "directory", false).value_or("");
+    include_initial = r.boolean(out, "include_initial", false).value_or(true);
+    const Field ev = YamlReader::child(out, "every");
+    const Field ts = YamlReader::child(out, "times");
+    if (YamlReader::present(ev) && YamlReader::present(ts)) {
+      r.error(ts, "give either 'every' or 'times', not both");
+    } else if (YamlReader::present(ev)) {
+      every = r.number(out, "every", Bound::kPositive, "time", true).value_or(0.0);
+      if (every > 0.0 && time_ok) {
+        const double n = std::floor(s.time.end / every * (1.0 + 1e-12));
+        if (n > 1e7) {
+          r.error(ev,
+                  format_number(every) + " gives more than 1e7 frames; allowed: a longer period");
+        } else {
+          for (double k = 1; k <= n; ++k) times.push_back(k * every);
+        }
+      }
+    } else if (r.expect_sequence(ts)) {
+      for (std::size_t i = 0; i < ts.node.size(); ++i) {
+        const Field e = YamlReader::element(ts, i);
+        const auto t = r.number_at(e, Bound::kNonNegative, "time");
+        if (!t) continue;
+        if (time_ok && *t > s.time.end) {
+          r.error(e, format_number(*t) + " is after the end time " + format_number(s.time.end) +
+                         "; allowed: 0 <= t <= time.end");
+          continue;
+        }
+        times.push_back(*t);
+      }
+    }
+    s.output.formats.clear();
+    if (auto fmts = r.string_list(out, "formats", false)) {
+      for (const auto& name : *fmts) {
+        if (name == "vtu")
+          s.output.formats.push_back(OutputFormat::kVtu);
+        else if (name == "vtp")
+          s.output.formats.push_back(OutputFormat::kVtp);
+        else if (name == "csv")
+          s.output.formats.push_back(OutputFormat::kCsv);
+        else {
+          std::string msg = "unknown output format '" + name + "'";
+          if (auto near = nearest_name(name, kFormats)) msg += "; did you mean '" + *near + "'?";
+          r.error(YamlReader::child(out, "formats"), msg + " (allowed: vtu, vtp, csv)");
+        }
+      }
+    } else {
+      s.output.formats = {OutputFormat::kVtu, OutputFormat::kCsv};
+    }
+    if (auto names = r.string_list(out, "species", false)) {
+      std::vector<std::string_view> known;
+      for (const auto& sp : s.species) known.push_back(sp.name);
+      for (const auto& name : *names) {
+        if (s.find_species(name)) {
+          s.output.species.push_back(name);
+          continue;
+        }
+        std::string msg = "unknown species '" + name + "'";
+        if (auto near = nearest_name(name, known)) msg += "; did you mean '" + *near + "'?";
+        r.error(YamlReader::child(out, "species"), msg);
+      }
+    } else {
+      for (const auto& sp : s.species) s.output.species.push_back(sp.name);
+    }
+    s.output.checkpoint_every =
+        r.number_or(out, "checkpoint_every", 0.0, Bound::kNonNegative, "time");
+  } else {
+    for (const auto& sp : s.species) s.output.species.push_back(sp.name);
+  }
+  if (!time_ok) return;
+  if (include_initial) times.push_back(0.0);
+  const double scale = every > 0.0 ? std::min(every, s.time.coupling_step) : s.time.coupling_step;
+  s.output.times = normalise_times(std::move(times), s.time.end, scale);
+}
+
+}  // namespace sadr::orchestrator::detail

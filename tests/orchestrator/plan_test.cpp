@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: MIT
+// The plan: one test per skip rule, plus the text and JSON forms.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "sadr/orchestrator/plan.hpp"
+
+namespace sadr::orchestrator {
+namespace {
+
+Species species(const std::string& name, bool stochastic) {
+  Species s;
+  s.name = name;
+  s.stochastic = stochastic;
+  s.diffusivity = 0.1;
+  return s;
+}
+
+Scene moving_scene() {
+  Scene s;
+  s.fluid.backend = "sdpd";
+  s.fluid.temperature = 1.0;
+  s.species = {species("A", true), species("C", false)};
+  return s;
+}
+
+bool mentions(const std::vector<std::string>& lines, const std::string& text) {
+  return std::any_of(lines.begin(), lines.end(),
+                     [&](const std::string& l) { return l.find(text) != std::string::npos; });
+}
+
+TEST(Plan, FullHybridRunsEverything) {
+  const Plan p = make_plan(moving_scene());
+  EXPECT_TRUE(p.fluid_service);
+  EXPECT_TRUE(p.fluid_stepping);
+  EXPECT_TRUE(p.ssa_service);
+  EXPECT_TRUE(p.graph_rebuild_each_step);
+  EXPECT_TRUE(p.particles_to_ssa_each_step);
+  EXPECT_TRUE(p.thermal_noise);
+  EXPECT_FALSE(p.back_transfer);
+  EXPECT_EQ(p.ssa_species, std::vector<std::string>{"A"});
+  EXPECT_EQ(p.fluid_species, std::vector<std::string>{"C"});
+  EXPECT_EQ(p.fluid_calls_per_step, 1);
+}
+
+TEST(Plan, NoSsaServiceWithoutStochasticSpecies) {
+  Scene s = moving_scene();
+  s.species = {species("C", false)};
+  const Plan p = make_plan(s);
+  EXPECT_FALSE(p.ssa_service);
+  EXPECT_FALSE(p.graph_rebuild_each_step);
+  EXPECT_TRUE(p.ssa_species.empty());
+  EXPECT_TRUE(mentions(p.skipped, "ssa_service: not launched (no stochastic species)"));
+}
+
+TEST(Plan, StaticBackendDoesNotStepTheFluidAndBuildsTheGraphOnce) {
+  Scene s = moving_scene();
+  s.fluid.backend = "static";
+  s.species = {species("A", true)};
+  const Plan p = make_plan(s);
+  EXPECT_FALSE(p.fluid_service);
+  EXPECT_FALSE(p.fluid_stepping);
+  EXPECT_TRUE(p.ssa_service);
+  EXPECT_FALSE(p.graph_rebuild_each_step);
+  EXPECT_FALSE(p.particles_to_ssa_each_step);
+  EXPECT_FALSE(p.thermal_noise);  // even with k_B T > 0: nothing moves
+  EXPECT_EQ(p.fluid_calls_per_step, 0);
+  EXPECT_TRUE(mentions(p.skipped, "fluid_service: not launched"));
+  EXPECT_TRUE(mentions(p.skipped, "built once"));
+}
+
+TEST(Plan, StaticBackendWithDeterministicSpeciesStillIntegratesThem) {
+  Scene s = moving_scene();
+  s.fluid.backend = "static";
+  const Plan p = make_plan(s);
+  EXPECT_TRUE(p.fluid_service);
+  EXPECT_TRUE(p.fluid_stepping);
+  EXPECT_FALSE(p.graph_rebuild_each_step);
+  EXPECT_EQ(p.fluid_species, std::vector<std::string>{"C"});
+  EXPECT_TRUE(mentions(p.skipped, "particle motion: none"));
+}
+
+TEST(Plan, NoNoiseAtZeroTemperature) {
+  Scene s = moving_scene();
+  s.fluid.temperature = 0.0;
+  const Plan p = make_plan(s);
+  EXPECT_FALSE(p.thermal_noise);
+  EXPECT_TRUE(mentions(p.skipped, "thermal noise: none"));
+}
+
+TEST(Plan, BackTransferOnlyForBoussinesqFromStochasticSpecies) {
+  Scene s = moving_scene();
+  s.fluid.boussinesq = Boussinesq{"C", 1.0, 0.0, {0, 1, 0}};  // deterministic: no transfer
+  Plan p = make_plan(s);
+  EXPECT_FALSE(p.back_transfer);
+  EXPECT_TRUE(mentions(p.skipped, "back-transfer ssa -> fluid: none"));
+  s.fluid.boussinesq->species = "A";
+  p = make_plan(s);
+  EXPECT_TRUE(p.back_transfer);
+  EXPECT_EQ(p.back_transfer_species, std::vector<std::string>{"A"});
+  EXPECT_EQ(p.fluid_species, (std::vector<std::string>{"C", "A"}));  // A goes on the fluid wire
+  EXPECT_EQ(p.ssa_species, std::vector<std::string>{"A"});
+}
+
+TEST(Plan, OnlyNeededSpeciesOnTheWire) {
+  Scene s = moving_scene();
+  s.species = {species("A", true), species("B", true), species("C", false), species("D", false)};
+  const Plan p = make_plan(s);
+  EXPECT_EQ(p.ssa_species, (std::vector<std::string>{"A", "B"}));
+  EXPECT_EQ(p.fluid_species, (std::vector<std::string>{"C", "D"}));
+}
+
+TEST(Plan, StrangCallsTheFluidTwiceOnlyWithBothOperators) {
+  Scene s = moving_scene();
+  s.time.splitting = Splitting::kStrang;
+  EXPECT_EQ(make_plan(s).fluid_calls_per_step, 2);
+  s.species = {species("C", false)};
+  const Plan p = make_plan(s);
+  EXPECT_EQ(p.fluid_calls_per_step, 1);
+  EXPECT_TRUE(mentions(p.skipped, "strang splitting: not needed"));
+}
+
+TEST(Plan, ReactionsAreCountedPerService) {
+  Scene s = moving_scene();
+  Reaction a;
+  a.stochastic = true;
+  Reaction c;
+  c.stochastic = false;
+  s.reactions = {a, a, c};
+  const Plan p = make_plan(s);
+  EXPECT_EQ(p.ssa_reactions, 2U);
+  EXPECT_EQ(p.fluid_reactions, 1U);
+}
+
+TEST(Plan, TextAndJsonForms) {
+  Scene s = moving_scene();
+  s.fluid.temperature = 0.0;
+  const Plan p = make_plan(s);
+  const auto lines = p.lines();
+  EXPECT_TRUE(mentions(lines, "fluid_service: launched, advanced every coupling step"));
+  EXPECT_TRUE(mentions(lines, "ssa_service: launched; species on the wire: A"));
+  EXPECT_TRUE(mentions(lines, "thermal noise: off"));
+  EXPECT_TRUE(mentions(lines, "skipped: thermal noise"));
+  const auto j = p.to_json();
+  EXPECT_EQ(j.at("ssa_service"), true);
+  EXPECT_EQ(j.at("thermal_noise"), false);
+  EXPECT_EQ(j.at("ssa_species"), nlohmann::json::array({"A"}));
+  EXPECT_EQ(j.at("splitting"), "lie");
+  EXPECT_EQ(j.at("skipped").size(), p.skipped.size());
+}
+
+}  // namespace
+}  // namespace sadr::orchestrator
