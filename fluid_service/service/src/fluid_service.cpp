@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/fluid/fluid_service.hpp"
 
+#include <chrono>
+
 #include "sadr/common/log.hpp"
 #include "sadr/fluid/builtin_backends.hpp"
 #include "sadr/wire/convert.hpp"
@@ -109,7 +111,10 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
     throw InvalidArgument("advance.time_step = " + format_value(req.time_step()) +
                           " (allowed: > 0)");
   }
+  const auto t0 = std::chrono::steady_clock::now();
   const StepReport r = b.advance(req.step_index(), req.time_step());
+  rep.set_compute_seconds(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   rep.set_step_index(req.step_index());
   rep.set_time(r.time);
   rep.set_substeps(r.substeps);

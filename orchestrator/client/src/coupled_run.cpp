@@ -184,7 +184,9 @@ class CoupledRun {
         req.set_run_id(run_id());
         req.set_step_index(step_ * calls + fluid_call++);
         req.set_time_step(stage.length());
-        moved = fluid_->advance(req).particles_moved() || moved;
+        const auto rep = fluid_->advance(req);
+        manifest_.timings_s["fluid_compute"] += rep.compute_seconds();
+        moved = rep.particles_moved() || moved;
       } else {
         ssa::v1::AdvanceRequest req;
         req.set_run_id(run_id());
@@ -198,7 +200,9 @@ class CoupledRun {
           moved = false;
         }
         ScopedTimer timer(manifest_.timings_s, "ssa");
-        ssa_->advance(req);
+        const auto rep = ssa_->advance(req);
+        manifest_.timings_s["ssa_graph"] += rep.graph_seconds();
+        manifest_.timings_s["ssa_nsm"] += rep.nsm_seconds();
       }
     }
     t_ = cs.end;

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/ssa/ssa_service.hpp"
 
+#include <chrono>
+#include <optional>
+
 #include "sadr/common/log.hpp"
 #include "sadr/ssa/nsm_solver.hpp"
 #include "sadr/wire/convert.hpp"
@@ -94,15 +97,19 @@ void SsaServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply&
     return;
   }
   bool rebuilt = false;
-  if (req.has_particles()) {
-    rebuilt = s.update_graph(wire::from_proto(req.particles(), "advance.particles"));
-  }
+  std::optional<ParticleState> moved;  // converted before timing: conversion is transfer cost
+  if (req.has_particles()) moved = wire::from_proto(req.particles(), "advance.particles");
+  const auto t0 = std::chrono::steady_clock::now();
+  if (moved) rebuilt = s.update_graph(*moved);
+  const auto t1 = std::chrono::steady_clock::now();
   if (!(req.t_end() >= s.time())) {
     throw InvalidArgument("advance.t_end = " + format_value(req.t_end()) +
                           " is before the current time " + format_value(s.time()));
   }
   const std::uint64_t before = s.events();
   s.advance(req.t_end());
+  rep.set_graph_seconds(std::chrono::duration<double>(t1 - t0).count());
+  rep.set_nsm_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
   rep.set_step_index(req.step_index());
   rep.set_time(s.time());
   rep.set_events(s.events() - before);

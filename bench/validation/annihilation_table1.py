@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""drawert2019 Table 1, SSA column: 1D A + B -> 0 between Dirichlet reservoirs.
+
+Runs `sadr run` with R realizations per particle count, reads the ensemble
+mean of the last frame (steady state), and computes the paper's metric
+    eps = ||u_A - u_ref||_2 / (Np - 1),  u_A = E[X_A] / N_b  (interior particles),
+against the 6th-order PDE reference at t = inf (tests/data/refs/annihilation_1d_subset.csv,
+from refs/annihilation_1d.py). Also reported (refs/README.md section 8): the
+statistical noise level sqrt(sum s_i^2 / R) / N_b / (Np - 1) of that metric, and
+the noise-corrected bias sqrt(max(0, ||.||^2 - sum s_i^2/R)) / N_b / (Np - 1).
+
+Usage: annihilation_table1.py --sadr build/release/bin/sadr [--np 17 33 65]
+       [--nb 1000] [--realizations 100] [--end 4] [--out bench/results]
+Writes <out>/annihilation_table1.json and .md, and prints a table.
+"""
+import argparse, csv, json, math, os, shutil, subprocess, sys, tempfile, time
+
+PAPER = {17: 7.285e-4, 33: 5.334e-4, 65: 6.644e-4}          # Table 1, eps_SSA (N_b = 1e4)
+PAPER_TIME = "0.7-6 s per realization (the paper's code, measured on this machine type)"
+
+SCENE = """name: ann{np}
+dimension: 1
+box: {{lower: [0.0], upper: [1.0], periodic: [false]}}
+regions:
+  - {{name: left_wall, shape: box, lower: [0.0], upper: [0.0]}}
+  - {{name: right_wall, shape: box, lower: [1.0], upper: [1.0]}}
+particles:
+  spacing: {dx!r}
+  density: 1.0
+  fill:
+    - {{region: left_wall, kind: wall}}
+    - {{region: right_wall, kind: wall}}
+    - {{kind: fluid}}
+fluid: {{backend: static, h_over_dx: 1.8}}
+species:
+  - name: A
+    diffusivity: 0.1
+    boundaries:
+      - {{region: left_wall, condition: dirichlet, count: {nb}}}
+      - {{region: right_wall, condition: dirichlet, count: 0}}
+  - name: B
+    diffusivity: 0.1
+    boundaries:
+      - {{region: left_wall, condition: dirichlet, count: 0}}
+      - {{region: right_wall, condition: dirichlet, count: {nb}}}
+reactions:
+  - {{name: annihilation, equation: "A + B -> 0", rate: 0.1}}
+time: {{coupling_step: 0.05, end: {end}}}
+output: {{times: [{end}], formats: [csv]}}
+ssa: {{convention: symmetric}}
+seed: {seed}
+"""
+
+
+def read_rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def reference(refs, np_, nb):
+    rows = [r for r in refs if int(r["Np"]) == np_ and float(r["Nb"]) == nb and r["t"] == "inf"]
+    rows.sort(key=lambda r: float(r["x"]))
+    if len(rows) != np_:
+        sys.exit(f"no t=inf reference for Np={np_}, Nb={nb} in the reference file")
+    return [float(r["uA"]) for r in rows]
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    root = os.path.dirname(os.path.dirname(here))
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--sadr", default=os.path.join(root, "build/release/bin/sadr"))
+    ap.add_argument("--np", type=int, nargs="+", default=[17, 33, 65])
+    ap.add_argument("--nb", type=float, default=1000)
+    ap.add_argument("--realizations", type=int, default=100)
+    ap.add_argument("--end", type=float, default=4.0)
+    ap.add_argument("--seed", type=int, default=2019)
+    ap.add_argument("--refs", default=os.path.join(root, "tests/data/refs/annihilation_1d_subset.csv"))
+    ap.add_argument("--out", default=os.path.join(root, "bench/results"))
+    a = ap.parse_args()
+    refs = read_rows(a.refs)
+    results = []
+    for np_ in a.np:
+        work = tempfile.mkdtemp(prefix=f"sadr-table1-{np_}-")
+        scene = os.path.join(work, "scene.yaml")
+        with open(scene, "w") as f:
+            f.write(SCENE.format(np=np_, dx=1.0 / (np_ - 1), nb=int(a.nb), end=a.end, seed=a.seed))
+        out = os.path.join(work, "out")
+        t0 = time.time()
+        subprocess.run([a.sadr, "run", scene, "-r", str(a.realizations), "-q", "-o", out], check=True)
+        cleanup = work
+        wall = time.time() - t0
+        frames = sorted(os.listdir(os.path.join(out, "ensemble")))
+        rows = read_rows(os.path.join(out, "ensemble", frames[-1]))
+        rows.sort(key=lambda r: int(r["id"]))
+        ref = reference(refs, np_, a.nb)
+        interior = range(1, np_ - 1)
+        R = int(rows[1]["realizations"])
+        err2 = sum((float(rows[i]["A_mean"]) / a.nb - ref[i]) ** 2 for i in interior)
+        noise2 = sum(float(rows[i]["A_var"]) / R for i in interior) / a.nb ** 2
+        n = np_ - 1
+        res = {"Np": np_, "N_b": a.nb, "C0": a.nb * (np_ - 1), "realizations": R, "t": a.end,
+               "eps": math.sqrt(err2) / n, "noise": math.sqrt(noise2) / n,
+               "bias": math.sqrt(max(0.0, err2 - noise2)) / n,
+               "paper_eps": PAPER.get(np_), "wall_s": wall, "wall_s_per_realization": wall / R}
+        results.append(res)
+        shutil.rmtree(cleanup, ignore_errors=True)
+        print(f"Np={np_:3d}  eps={res['eps']:.3e} (noise {res['noise']:.2e}, bias {res['bias']:.2e})"
+              f"  paper {res['paper_eps']:.3e}   wall {wall:.1f} s for {R} realizations", flush=True)
+    os.makedirs(a.out, exist_ok=True)
+    meta = {"command": " ".join(sys.argv), "metric": "||E[X_A]/N_b - u_ref||_2/(Np-1), interior, t=end vs PDE t=inf",
+            "cores": os.cpu_count(), "paper_time": PAPER_TIME, "results": results}
+    with open(os.path.join(a.out, "annihilation_table1.json"), "w") as f:
+        json.dump(meta, f, indent=2)
+    with open(os.path.join(a.out, "annihilation_table1.md"), "w") as f:
+        f.write(f"# drawert2019 Table 1, SSA column\n\nCommand: `{meta['command']}`\n\n")
+        f.write(f"Metric: {meta['metric']}. N_b = {a.nb:g} molecules per boundary particle.\n\n")
+        f.write("| Np | eps (ours) | noise level | bias (noise-corrected) | paper eps_SSA (N_b = 1e4) | wall s / realization |\n|---|---|---|---|---|---|\n")
+        for r in results:
+            f.write(f"| {r['Np']} | {r['eps']:.2e} | {r['noise']:.2e} | {r['bias']:.2e} | {r['paper_eps']:.2e} | {r['wall_s_per_realization']:.3f} |\n")
+        f.write(f"\nPeer: {PAPER_TIME}. Ours: {os.cpu_count()} cores, realizations in parallel.\n")
+
+
+if __name__ == "__main__":
+    main()
