@@ -189,6 +189,38 @@ TEST(OrchestratorCli, KilledSsaServiceIsNamedAndTheCheckpointSurvives) {
   if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
 }
 
+TEST(OrchestratorCli, RestartOnFailureRecoversFromTheCheckpointBitIdentically) {
+  const fs::path d = scratch("restart");
+  // About 1 s of wall time (long enough to be killed mid-run); checkpoints every 0.5 s.
+  const fs::path scene = write_scene(d, annihilation_scene(20.0, "[5.0, 10.0, 15.0, 20.0]", 0.5));
+  ASSERT_EQ(run(bin("sadr") + " run " + scene.string() + " -q -o " + (d / "ref").string(),
+                d / "ref.log"),
+            0)
+      << read_file(d / "ref.log");
+  const fs::path out = d / "out";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string log = (d / "run.log").string();
+    freopen(log.c_str(), "w", stderr);
+    execl(bin("sadr").c_str(), "sadr", "run", scene.c_str(), "-q", "--restart-on-failure", "2",
+          "-o", out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const fs::path cp = out / "checkpoint" / "checkpoint.json";
+  for (int i = 0; i < 600 && !fs::exists(cp); ++i) std::this_thread::sleep_for(10ms);
+  const std::string find = "pgrep -P " + std::to_string(pid) + " -x ssa_service > '" +
+                           (d / "pid").string() + "'";
+  if (std::system(find.c_str()) == 0) kill(std::stoi(read_file(d / "pid")), SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << read_file(d / "run.log");
+  const std::string log = read_file(d / "run.log");
+  EXPECT_NE(log.find("restarting the services (1 of 2)"), std::string::npos) << log;
+  expect_same_frames(d / "ref", out);
+  if (!HasFailure()) fs::remove_all(d);
+}
+
 TEST(OrchestratorCli, ValidateExitCodes) {
   const fs::path d = scratch("validate");
   const fs::path good = write_scene(d, annihilation_scene(0.1, "[0.1]", 0));
