@@ -142,10 +142,43 @@ int cmd_run(const CliOptions& o) {
   const Scene scene = load_scene(o.scene);
   const Plan plan = make_plan(scene);
   print_plan(scene, plan, o);
+  if (!o.realization.empty() && o.output.empty()) {
+    throw InvalidArgument("--realization needs --output DIR (the folder shared by all tasks)");
+  }
   const fs::path out = o.output.empty() ? default_output(scene) : fs::path(o.output);
-  prepare_output(out, o.force);
+  if (o.realization.empty()) {
+    prepare_output(out, o.force);
+  } else {
+    ensure_directory(out);  // shared by the array tasks; each writes only its realization
+  }
   std::fprintf(stderr, "sadr: writing to %s\n", out.string().c_str());
 
+  if (!o.realization.empty()) {
+    // One realization of an ensemble (a cluster array task): DIR/realization_NNNN.
+    std::string index = o.realization;
+    if (index == "env") {
+      const char* v = std::getenv("SLURM_ARRAY_TASK_ID");
+      if (!v) v = std::getenv("JOB_COMPLETION_INDEX");
+      if (!v) {
+        throw InvalidArgument(
+            "--realization env: neither SLURM_ARRAY_TASK_ID nor "
+            "JOB_COMPLETION_INDEX is set");
+      }
+      index = v;
+    }
+    char* end = nullptr;
+    const unsigned long long r = std::strtoull(index.c_str(), &end, 10);
+    if (index.empty() || *end != '\0' || r > 9999) {
+      throw InvalidArgument("--realization '" + index + "' (allowed: 0..9999 or env)");
+    }
+    char name[32];
+    std::snprintf(name, sizeof name, "realization_%04llu", r);
+    RunOptions base;
+    base.progress = !o.quiet;
+    base.progress_label = std::string(name) + " ";
+    const RunResult res = run_realization(scene, plan, o, r, out / name, nullptr, base);
+    return res.interrupted && g_interrupt ? kExitInterrupted : kExitOk;
+  }
   const int r_count = std::max(1, o.realizations);
   if (r_count == 1) {
     RunOptions base;
@@ -165,6 +198,11 @@ int cmd_run(const CliOptions& o) {
   if (jobs > 1) setenv("OMP_NUM_THREADS", "1", 0);  // one core per realization
   std::vector<std::string> species = scene.output.species;
   EnsembleAccumulator ensemble(species, scene.particles.size());
+  // Realizations finish in any order; they are added in index order (a
+  // reorder buffer) so the floating-point sums, and the files, are reproducible.
+  using Frames = std::map<std::size_t, std::pair<double, std::vector<SpeciesColumn>>>;
+  std::map<int, Frames> pending;
+  int next_to_add = 0;
   std::mutex mutex;
   std::atomic<int> next{0}, done{0};
   std::exception_ptr failure;
@@ -172,7 +210,7 @@ int cmd_run(const CliOptions& o) {
   auto worker = [&] {
     for (int r; (r = next++) < r_count && !g_interrupt;) {
       // Frames of this realization, added to the ensemble once it succeeds.
-      std::map<std::size_t, std::pair<double, std::vector<SpeciesColumn>>> frames;
+      Frames frames;
       RunOptions base;
       base.progress = false;
       base.on_frame = [&frames](std::size_t k, double t, std::span<const SpeciesColumn> cols) {
@@ -184,8 +222,11 @@ int cmd_run(const CliOptions& o) {
         const RunResult res = run_realization(scene, plan, o, static_cast<std::uint64_t>(r),
                                               out / name, nullptr, base);
         std::lock_guard lock(mutex);
-        if (!res.interrupted) {
-          for (const auto& [k, f] : frames) ensemble.add(k, f.first, f.second);
+        if (!res.interrupted) pending.emplace(r, std::move(frames));
+        for (auto it = pending.find(next_to_add); it != pending.end();
+             it = pending.find(++next_to_add)) {
+          for (const auto& [k, f] : it->second) ensemble.add(k, f.first, f.second);
+          pending.erase(it);
         }
         const int d = ++done;
         const double el =

@@ -34,11 +34,17 @@ struct CliOptions {
   double timeout_s = 120;  ///< per service call
   double stop_at = -1;     ///< checkpoint and stop at this simulated time (< 0: never)
   bool quiet = false;      ///< no progress display
+  /// Run only this realization (a cluster array task); "" = all. "env" takes
+  /// the index from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX.
+  std::string realization;
+  std::string directory;  ///< ensemble: the output directory to combine
 };
 
 int cmd_validate(const CliOptions& options);
 int cmd_run(const CliOptions& options);
 int cmd_resume(const CliOptions& options);
+/// Combines DIR/realization_*/frames/*.csv into DIR/ensemble/ (mean, variance).
+int cmd_ensemble(const CliOptions& options);
 
 /// Maps an exception to an exit code and prints it ("sadr: error: ...").
 int report_failure(const std::exception& e);

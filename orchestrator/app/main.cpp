@@ -9,20 +9,22 @@
 using namespace sadr::orchestrator;
 
 int main(int argc, char** argv) {
-  CLI::App app{std::string("sadr ") + sadr::kVersion +
-               ": stochastic advection-diffusion-reaction in particle fluids.\n"
-               "A particle fluid (fluid_service: SDPD or static) carries molecules whose\n"
-               "reactions and diffusion are simulated exactly (ssa_service: Next Subvolume\n"
-               "Method on the particle diffusion graph), coupled by Lie or Strang splitting.\n\n"
-               "Examples:\n"
-               "  sadr validate examples/static_reaction_diffusion.yaml\n"
-               "  sadr run examples/annihilation_1d_stochastic.yaml --output runs/ann17\n"
-               "  sadr run examples/annihilation_1d_stochastic.yaml --realizations 100\n"
-               "  sadr resume runs/ann17/checkpoint/checkpoint.json\n\n"
-               "Exit codes: 0 ok, 1 invalid scene/input, 2 usage, 3 service failure,\n"
-               "4 numerical failure, 5 I/O failure, 130 interrupted (checkpoint written).\n"
-               "Scene format: docs/scene-format.md. Outputs: <output>/run.json, frames/,\n"
-               "<name>.pvd (ParaView), checkpoint/, ensemble/ (with --realizations)."};
+  CLI::App app{
+      std::string("sadr ") + sadr::kVersion +
+      ": stochastic advection-diffusion-reaction in particle fluids.\n"
+      "A particle fluid (fluid_service: SDPD or static) carries molecules whose\n"
+      "reactions and diffusion are simulated exactly (ssa_service: Next Subvolume\n"
+      "Method on the particle diffusion graph), coupled by Lie or Strang splitting.\n\n"
+      "Examples:\n"
+      "  sadr validate examples/static_reaction_diffusion.yaml\n"
+      "  sadr run examples/annihilation_1d_stochastic.yaml --output runs/ann17\n"
+      "  sadr run examples/annihilation_1d_stochastic.yaml --realizations 100\n"
+      "  sadr resume runs/ann17/checkpoint/checkpoint.json\n"
+      "  sbatch --array=0-99 deploy/slurm/realization.sbatch SCENE OUT; sadr ensemble OUT\n\n"
+      "Exit codes: 0 ok, 1 invalid scene/input, 2 usage, 3 service failure,\n"
+      "4 numerical failure, 5 I/O failure, 130 interrupted (checkpoint written).\n"
+      "Scene format: docs/scene-format.md. Outputs: <output>/run.json, frames/,\n"
+      "<name>.pvd (ParaView), checkpoint/, ensemble/ (with --realizations)."};
   app.require_subcommand(1);
   CliOptions o;
   std::string mode = "processes", level = "info";
@@ -65,6 +67,10 @@ int main(int argc, char** argv) {
   run->add_option("-j,--jobs", o.jobs, "realizations run at once (default: number of cores)")
       ->check(CLI::NonNegativeNumber);
   run->add_flag("--force", o.force, "overwrite a non-empty output directory");
+  run->add_option("--realization", o.realization,
+                  "run only realization K (0-based) into OUTPUT/realization_K; 'env' takes K "
+                  "from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX (cluster array jobs; "
+                  "combine with 'sadr ensemble OUTPUT')");
   add_service_options(run);
 
   auto* resume =
@@ -73,6 +79,13 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingPath);
   add_service_options(resume);
+
+  auto* ensemble = app.add_subcommand(
+      "ensemble",
+      "combine OUTPUT/realization_*/frames/*.csv into OUTPUT/ensemble/ (mean, variance)");
+  ensemble->add_option("directory", o.directory, "the output directory of the realizations")
+      ->required()
+      ->check(CLI::ExistingDirectory);
 
   try {
     app.parse(argc, argv);
@@ -95,6 +108,7 @@ int main(int argc, char** argv) {
   try {
     if (*validate) return cmd_validate(o);
     if (*run) return cmd_run(o);
+    if (*ensemble) return cmd_ensemble(o);
     return cmd_resume(o);
   } catch (const std::exception& e) {
     return report_failure(e);

@@ -193,9 +193,9 @@ TEST(OrchestratorCli, RestartOnFailureRecoversFromTheCheckpointBitIdentically) {
   const fs::path d = scratch("restart");
   // About 1 s of wall time (long enough to be killed mid-run); checkpoints every 0.5 s.
   const fs::path scene = write_scene(d, annihilation_scene(20.0, "[5.0, 10.0, 15.0, 20.0]", 0.5));
-  ASSERT_EQ(run(bin("sadr") + " run " + scene.string() + " -q -o " + (d / "ref").string(),
-                d / "ref.log"),
-            0)
+  ASSERT_EQ(
+      run(bin("sadr") + " run " + scene.string() + " -q -o " + (d / "ref").string(), d / "ref.log"),
+      0)
       << read_file(d / "ref.log");
   const fs::path out = d / "out";
   const pid_t pid = fork();
@@ -208,8 +208,8 @@ TEST(OrchestratorCli, RestartOnFailureRecoversFromTheCheckpointBitIdentically) {
   }
   const fs::path cp = out / "checkpoint" / "checkpoint.json";
   for (int i = 0; i < 600 && !fs::exists(cp); ++i) std::this_thread::sleep_for(10ms);
-  const std::string find = "pgrep -P " + std::to_string(pid) + " -x ssa_service > '" +
-                           (d / "pid").string() + "'";
+  const std::string find =
+      "pgrep -P " + std::to_string(pid) + " -x ssa_service > '" + (d / "pid").string() + "'";
   if (std::system(find.c_str()) == 0) kill(std::stoi(read_file(d / "pid")), SIGKILL);
   int status = 0;
   waitpid(pid, &status, 0);
@@ -218,6 +218,43 @@ TEST(OrchestratorCli, RestartOnFailureRecoversFromTheCheckpointBitIdentically) {
   const std::string log = read_file(d / "run.log");
   EXPECT_NE(log.find("restarting the services (1 of 2)"), std::string::npos) << log;
   expect_same_frames(d / "ref", out);
+  if (!HasFailure()) fs::remove_all(d);
+}
+
+TEST(OrchestratorCli, ArrayTasksPlusEnsembleEqualALocalEnsemble) {
+  const fs::path d = scratch("array");
+  const fs::path scene = write_scene(d, annihilation_scene(0.2, "[0.1, 0.2]", 0));
+  ASSERT_EQ(
+      run(bin("sadr") + " run " + scene.string() + " -q -r 4 -j 2 -o " + (d / "local").string(),
+          d / "local.log"),
+      0)
+      << read_file(d / "local.log");
+  // As a Slurm array would run them: one process per realization, any order.
+  for (const char* k : {"2", "0", "3"}) {
+    ASSERT_EQ(run(bin("sadr") + " run " + scene.string() + " -q --realization " + k + " -o " +
+                      (d / "array").string(),
+                  d / "task.log"),
+              0)
+        << read_file(d / "task.log");
+  }
+  ASSERT_EQ(run("SLURM_ARRAY_TASK_ID=1 " + bin("sadr") + " run " + scene.string() +
+                    " -q --realization env -o " + (d / "array").string(),
+                d / "task.log"),
+            0)
+      << read_file(d / "task.log");
+  ASSERT_EQ(run(bin("sadr") + " ensemble " + (d / "array").string(), d / "ens.log"), 0)
+      << read_file(d / "ens.log");
+  for (const char* f : {"frame_000000.csv", "frame_000001.csv"}) {
+    const std::string a = read_file(d / "local" / "ensemble" / f);
+    EXPECT_FALSE(a.empty()) << f;
+    EXPECT_TRUE(a == read_file(d / "array" / "ensemble" / f)) << f;
+    EXPECT_NE(a.find(",4,"), std::string::npos) << "4 realizations per row: " << a.substr(0, 200);
+  }
+  EXPECT_EQ(run("env -u SLURM_ARRAY_TASK_ID -u JOB_COMPLETION_INDEX " + bin("sadr") + " run " +
+                    scene.string() + " --realization env -o " + (d / "x").string(),
+                d / "noenv.log"),
+            1);
+  EXPECT_NE(read_file(d / "noenv.log").find("SLURM_ARRAY_TASK_ID"), std::string::npos);
   if (!HasFailure()) fs::remove_all(d);
 }
 
