@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
       "  sadr run examples/annihilation_1d_stochastic.yaml --output runs/ann17\n"
       "  sadr run examples/annihilation_1d_stochastic.yaml --realizations 100\n"
       "  sadr resume runs/ann17/checkpoint/checkpoint.json\n"
+      "  deploy/slurm/submit-ensemble.sh SCENE OUT 100  # Slurm array, then sadr ensemble OUT\n"
       "  sbatch --array=0-99 deploy/slurm/realization.sbatch SCENE OUT; sadr ensemble OUT\n\n"
       "Exit codes: 0 ok, 1 invalid scene/input, 2 usage, 3 service failure,\n"
       "4 numerical failure, 5 I/O failure, 130 interrupted (checkpoint written).\n"
