@@ -1,0 +1,15 @@
+// SPDX-License-Identifier: MIT
+#include <memory>
+
+#include "sadr/fluid/builtin_backends.hpp"
+#include "sdpd/sdpd_backend.hpp"
+#include "static/static_backend.hpp"
+
+namespace sadr::fluid {
+
+void register_builtin_backends(BackendRegistry& registry) {
+  registry.add("sdpd", [] { return std::make_unique<SdpdBackend>(); });
+  registry.add("static", [] { return std::make_unique<StaticBackend>(); });
+}
+
+}  // namespace sadr::fluid

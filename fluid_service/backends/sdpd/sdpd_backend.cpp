@@ -1,0 +1,458 @@
+// SPDX-License-Identifier: MIT
+#include "sdpd_backend.hpp"
+#include "sadr/fluid/parallel.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "sadr/common/status.hpp"
+#include "sadr/fluid/state_blob.hpp"
+
+namespace sadr::fluid {
+
+namespace {
+constexpr std::uint64_t kMagic = 0x3144504453524441ULL;  // "ADRSSDPD1"-ish tag
+constexpr std::uint32_t kBlobVersion = 1;
+constexpr std::uint32_t kMaxSubsteps = 65535;  // noise key: (step_index << 16) | substep
+
+void check_initial(const FluidModel& model, const ParticleState& s,
+                   const std::vector<std::vector<double>>& c) {
+  model.validate();
+  s.validate();
+  if (s.dimension != model.box.dimension) {
+    throw InvalidArgument("particle state dimension " + std::to_string(s.dimension) +
+                          " differs from box.dimension " + std::to_string(model.box.dimension));
+  }
+  if (s.size() == 0) throw InvalidArgument("particle state is empty");
+  if (s.size() > 0xFFFFFFF0ULL) throw InvalidArgument("too many particles (max 2^32 - 16)");
+  if (!c.empty() && c.size() != model.species.size()) {
+    throw InvalidArgument("concentrations has " + std::to_string(c.size()) +
+                          " species, model has " + std::to_string(model.species.size()));
+  }
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    if (c[k].size() != s.size()) {
+      throw InvalidArgument("concentrations[" + std::to_string(k) + "] has " +
+                            std::to_string(c[k].size()) + " entries, expected " +
+                            std::to_string(s.size()));
+    }
+    for (std::size_t i = 0; i < c[k].size(); ++i) {
+      if (!std::isfinite(c[k][i])) {
+        throw InvalidArgument("concentrations[" + std::to_string(k) + "][" + std::to_string(i) +
+                              "] = " + format_value(c[k][i]) + " (must be finite)");
+      }
+    }
+  }
+  const PeriodicBox pb(model.box);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const ParticleKind k = s.kind(i);
+    if (k == ParticleKind::kInlet || k == ParticleKind::kOutlet) {
+      throw InvalidArgument("particle " + std::to_string(i) + " has kind " +
+                            std::string(to_string(k)) +
+                            ", not supported by this backend (fluid, wall)");
+    }
+    if (!pb.inside(&s.positions[3 * i])) {
+      throw InvalidArgument("particle " + std::to_string(i) +
+                            " lies outside the box on a walled axis");
+    }
+  }
+}
+}  // namespace
+
+void SdpdBackend::require_initialized(const char* what) const {
+  if (!initialized_)
+    throw FailedPrecondition(std::string("sdpd: ") + what + " before initialize()");
+}
+
+void SdpdBackend::initialize(const FluidModel& model, const ParticleState& initial,
+                             const std::vector<std::vector<double>>& concentrations) {
+  check_initial(model, initial, concentrations);
+  model_ = model;
+  const int dim = model.box.dimension;
+  kernel_ = Kernel(parse_kernel(model.kernel), dim, model.smoothing_length);
+  eos_ = TaitEos(model.reference_density, model.sound_speed);
+  pbox_ = PeriodicBox(model.box);
+  const double skin = model.neighbor_skin * model.smoothing_length;
+  builder_ = std::make_unique<CellListBuilder>(model.box, model.smoothing_length + skin);
+  skin_half2_ = 0.25 * skin * skin;
+  const std::size_t n = initial.size();
+  mass_ = initial.masses;
+  kinds_.assign(n, ParticleKind::kFluid);
+  wall_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    kinds_[i] = initial.kind(i);
+    wall_[i] = kinds_[i] == ParticleKind::kWall ? 1 : 0;
+  }
+  // Morris walls: region and depth of every wall particle behind its region's plane.
+  morris_ = model.wall_model == WallModel::kMorrisExtrapolated;
+  wall_region_.assign(n, -1);
+  wall_depth_.assign(n, 0.0);
+  if (morris_) wall_region_ = model.assign_wall_regions(initial);
+  for (std::size_t i = 0; i < n && morris_; ++i) {
+    const int w = wall_region_[i];
+    if (w < 0) continue;
+    const auto& reg = model.wall_regions[static_cast<std::size_t>(w)];
+    double d = 0;
+    for (int a = 0; a < 3; ++a)
+      d -= reg.inward_normal[a] * (initial.positions[3 * i + a] - reg.surface_point[a]);
+    wall_depth_[i] = std::max(d, 0.0);
+  }
+  ids_ = initial.ids;
+  if (ids_.empty()) {
+    ids_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) ids_[i] = i;
+  }
+  y_.x = initial.positions;
+  for (std::size_t i = 0; i < n; ++i) pbox_.wrap(&y_.x[3 * i]);
+  y_.v = initial.velocities.empty() ? std::vector<double>(3 * n, 0.0) : initial.velocities;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int a = dim; a < 3; ++a) y_.v[3 * i + a] = 0.0;
+    if (wall_[i]) y_.v[3 * i] = y_.v[3 * i + 1] = y_.v[3 * i + 2] = 0.0;
+  }
+  y_.rho = initial.densities;
+  y_.c.assign(model.species.size(), std::vector<double>(n, 0.0));
+  for (std::size_t s = 0; s < concentrations.size(); ++s) y_.c[s] = concentrations[s];
+  species_.setup(model_, initial);
+  species_.apply_dirichlet(y_.c);
+  list_ref_x_.clear();
+  nlist_ = {};
+  time_ = 0;
+  initialized_ = true;
+}
+
+void SdpdBackend::ensure_neighbors(const std::vector<double>& x) {
+  bool rebuild = list_ref_x_.size() != x.size();
+  if (!rebuild) {
+    const auto ni = static_cast<std::int64_t>(x.size() / 3);
+    int moved = 0;
+#pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(max : moved)
+    for (std::int64_t ii = 0; ii < ni; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      double d[3] = {x[3 * i] - list_ref_x_[3 * i], x[3 * i + 1] - list_ref_x_[3 * i + 1],
+                     x[3 * i + 2] - list_ref_x_[3 * i + 2]};
+      pbox_.minimum_image(d);
+      if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > skin_half2_) moved = 1;
+    }
+    rebuild = moved != 0;
+  }
+  if (rebuild) {
+    builder_->build(x, nlist_);
+    list_ref_x_ = x;
+  }
+}
+
+StabilityLimits SdpdBackend::limits(const Y& y, const Rates& r) const {
+  StabilityLimits lim;
+  const double h = kernel_.support();
+  const std::size_t n = mass_.size();
+  double vmax2 = 0, rho_min = std::numeric_limits<double>::infinity(), amax2 = 0;
+  const auto& bq = model_.boussinesq;
+  const auto ni = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(max             \
+                                                                           : vmax2, amax2) \
+    reduction(min                                                                          \
+              : rho_min)
+  for (std::int64_t ii = 0; ii < ni; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if (wall_[i]) continue;
+    const double* v = &y.v[3 * i];
+    vmax2 = std::max(vmax2, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    rho_min = std::min(rho_min, y.rho[i]);
+    double a[3] = {model_.gravity[0], model_.gravity[1], model_.gravity[2]};
+    if (bq.species >= 0) {
+      const double b = bq.coefficient * (y.c[bq.species][i] - bq.reference);
+      for (int k = 0; k < 3; ++k) a[k] += b * bq.direction[k];
+    }
+    amax2 = std::max(amax2, a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  }
+  // SPEC 5 coefficients are Morris' for the smoothing length h_M = h/2 (support = 2 h_M).
+  const double hm = 0.5 * h;
+  lim.acoustic = 0.25 * hm / (model_.sound_speed + std::sqrt(vmax2));
+  if (model_.shear_viscosity > 0 && std::isfinite(rho_min)) {
+    lim.viscous = 0.125 * rho_min * hm * hm / model_.shear_viscosity;
+    if (r.max_visc_sum > 0)
+      lim.viscous = std::min(lim.viscous, 1.0 / (model_.shear_viscosity * r.max_visc_sum));
+  }
+  if (amax2 > 0) lim.body_force = 0.25 * std::sqrt(hm / std::sqrt(amax2));
+  const double kmax = species_.max_diffusivity();
+  if (kmax > 0) {
+    lim.diffusion = 0.125 * hm * hm / kmax;
+    if (r.max_k_sum > 0) lim.diffusion = std::min(lim.diffusion, 1.0 / (2.0 * kmax * r.max_k_sum));
+  }
+  if (species_.has_reactions()) {
+    ParticleState shape;
+    shape.densities = y.rho;
+    const double j = species_.reaction_rate_scale(y.c, shape);
+    if (j > 0) lim.reaction = 1.0 / j;
+  }
+  return lim;
+}
+
+void SdpdBackend::evaluate_current(std::uint64_t noise_step, Rates& out) {
+  require_initialized("evaluate_current");
+  evaluate(y_, noise_step, out, true);
+}
+
+StabilityLimits SdpdBackend::current_limits() {
+  require_initialized("current_limits");
+  evaluate(y_, 0, r0_, false);
+  return limits(y_, r0_);
+}
+
+StepReport SdpdBackend::advance(std::uint64_t step_index, double time_step) {
+  require_initialized("advance");
+  if (!(std::isfinite(time_step) && time_step > 0)) {
+    throw InvalidArgument("time_step = " + format_value(time_step) + " (must be finite and > 0)");
+  }
+  if (step_index >= (1ULL << 32)) throw InvalidArgument("step_index must be < 2^32");
+  const std::size_t n = mass_.size();
+  const int dim = model_.box.dimension;
+  StepReport rep;
+  rep.stable_dt = StabilityLimits::kNone;
+  rep.limiting_criterion = "none";
+  double remaining = time_step;
+  std::uint32_t sub = 0;
+  ytmp_.c.resize(y_.c.size());
+  while (remaining > 0) {
+    const std::uint64_t key = (step_index << 16) | sub;
+    evaluate(y_, key, r0_, true);
+    const StabilityLimits lim = limits(y_, r0_);
+    const auto [lim_dt, lim_name] = lim.smallest();
+    if (lim_dt < rep.stable_dt) {
+      rep.stable_dt = lim_dt;
+      rep.limiting_criterion = lim_name;
+    }
+    double allowed = lim_dt;
+    if (model_.max_time_step > 0) {
+      if (!model_.force_time_step) lim.check(std::min(model_.max_time_step, remaining));
+      allowed = model_.max_time_step;
+    }
+    const double nsub_rem = std::ceil(remaining / allowed * (1.0 - 1e-12));
+    const double dt = (std::isfinite(nsub_rem) && nsub_rem > 1) ? remaining / nsub_rem : remaining;
+    if (sub >= kMaxSubsteps) {
+      throw NumericalFailure("sdpd: more than 65535 sub-steps needed in one advance (limit '" +
+                                 lim_name + "' = " + format_value(lim_dt) +
+                                 "); use a smaller coupling time_step",
+                             {{"step", std::to_string(step_index)}, {"limit", lim_name}});
+    }
+    const double sdt = std::sqrt(dt);
+    const bool noise_on = !r0_.acc_noise.empty();
+    // Predictor: Y~ = Y + dt f(Y).
+    ytmp_.x = y_.x;
+    ytmp_.v = y_.v;
+    ytmp_.rho = y_.rho;
+    const auto ni = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) if (ni > kMinParallel)
+    for (std::int64_t ii = 0; ii < ni; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (wall_[i]) continue;
+      for (int a = 0; a < dim; ++a) {
+        const std::size_t k = 3 * i + a;
+        ytmp_.x[k] += dt * y_.v[k];
+        ytmp_.v[k] += dt * r0_.acc[k] + (noise_on ? sdt * r0_.acc_noise[k] : 0.0);
+      }
+      pbox_.wrap(&ytmp_.x[3 * i]);
+    }
+    if (model_.density_mode == DensityMode::kContinuity) {
+      for (std::size_t i = 0; i < n; ++i) ytmp_.rho[i] += dt * r0_.drho[i];
+    }
+    for (std::size_t s = 0; s < y_.c.size(); ++s) {
+      ytmp_.c[s] = y_.c[s];
+      if (!model_.species[s].deterministic) continue;
+      for (std::size_t i = 0; i < n; ++i) ytmp_.c[s][i] += dt * r0_.dc[s][i];
+    }
+    evaluate(ytmp_, key, r1_, false);  // noise: the start-of-step force is reused
+    // Corrector: Y = Y + dt/2 (f(Y) + f(Y~)), same noise increment.
+#pragma omp parallel for schedule(static) if (ni > kMinParallel)
+    for (std::int64_t ii = 0; ii < ni; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (wall_[i]) continue;
+      for (int a = 0; a < dim; ++a) {
+        const std::size_t k = 3 * i + a;
+        y_.x[k] += 0.5 * dt * (y_.v[k] + ytmp_.v[k]);
+        y_.v[k] += 0.5 * dt * (r0_.acc[k] + r1_.acc[k]) + (noise_on ? sdt * r0_.acc_noise[k] : 0.0);
+      }
+      pbox_.wrap(&y_.x[3 * i]);
+    }
+    if (model_.density_mode == DensityMode::kContinuity) {
+      for (std::size_t i = 0; i < n; ++i) y_.rho[i] += 0.5 * dt * (r0_.drho[i] + r1_.drho[i]);
+    } else {
+      y_.rho = ytmp_.rho;  // summation density is recomputed at the next evaluation
+    }
+    for (std::size_t s = 0; s < y_.c.size(); ++s) {
+      if (!model_.species[s].deterministic) continue;
+      for (std::size_t i = 0; i < n; ++i) y_.c[s][i] += 0.5 * dt * (r0_.dc[s][i] + r1_.dc[s][i]);
+    }
+    remaining -= dt;
+    if (remaining < 1e-12 * time_step) remaining = 0;
+    time_ += dt;
+    ++sub;
+    check_health(step_index, sub);
+  }
+  rep.time = time_;
+  rep.substeps = sub;
+  rep.particles_moved = true;
+  rep.min_density = std::numeric_limits<double>::infinity();
+  rep.max_density = 0;
+  double vmax2 = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    rep.min_density = std::min(rep.min_density, y_.rho[i]);
+    rep.max_density = std::max(rep.max_density, y_.rho[i]);
+    if (wall_[i]) continue;
+    const double* v = &y_.v[3 * i];
+    vmax2 = std::max(vmax2, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  rep.max_speed = std::sqrt(vmax2);
+  return rep;
+}
+
+void SdpdBackend::check_health(std::uint64_t step_index, std::uint32_t substep) const {
+  const std::size_t n = mass_.size();
+  auto fail = [&](std::size_t i, const std::string& quantity, double value,
+                  const std::string& why) {
+    throw NumericalFailure("sdpd blow-up at step " + std::to_string(step_index) + " sub-step " +
+                               std::to_string(substep) + ": particle id " +
+                               std::to_string(ids_[i]) + " " + quantity + " = " +
+                               format_value(value) + " (" + why + ")",
+                           {{"step", std::to_string(step_index)},
+                            {"substep", std::to_string(substep)},
+                            {"particle_id", std::to_string(ids_[i])},
+                            {"quantity", quantity},
+                            {"value", format_value(value)}});
+  };
+  const double band = model_.density_band, rho0 = model_.reference_density;
+  auto bad = [&](std::size_t i) {
+    bool ok = std::fabs(y_.rho[i] / rho0 - 1.0) <= band && pbox_.inside(&y_.x[3 * i]);
+    for (int a = 0; a < 3; ++a)
+      ok = ok && std::isfinite(y_.x[3 * i + a]) && std::isfinite(y_.v[3 * i + a]);
+    for (const auto& c : y_.c) ok = ok && std::isfinite(c[i]);
+    return !ok;
+  };
+  const auto ni = static_cast<std::int64_t>(n);
+  std::int64_t first = ni;
+#pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(min : first)
+  for (std::int64_t ii = 0; ii < ni; ++ii) {
+    if (bad(static_cast<std::size_t>(ii))) first = std::min(first, ii);
+  }
+  for (std::size_t i = static_cast<std::size_t>(first); i < n; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(y_.x[3 * i + a])) fail(i, "position", y_.x[3 * i + a], "non-finite");
+      if (!std::isfinite(y_.v[3 * i + a])) fail(i, "velocity", y_.v[3 * i + a], "non-finite");
+    }
+    const double rho = y_.rho[i];
+    if (!std::isfinite(rho)) fail(i, "density", rho, "non-finite");
+    if (std::fabs(rho / rho0 - 1.0) > band) {
+      fail(i, "density", rho, "outside rho_0 (1 +- " + format_value(band) + ")");
+    }
+    if (!pbox_.inside(&y_.x[3 * i]))
+      fail(i, "position", y_.x[3 * i], "particle left the box on a walled axis");
+    for (std::size_t s = 0; s < y_.c.size(); ++s) {
+      if (!std::isfinite(y_.c[s][i]))
+        fail(i, "concentration[" + model_.species[s].name + "]", y_.c[s][i], "non-finite");
+    }
+  }
+}
+
+std::size_t SdpdBackend::memory_bytes() const {
+  auto vb = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  auto yb = [&](const Y& y) {
+    std::size_t b = vb(y.x) + vb(y.v) + vb(y.rho);
+    for (const auto& c : y.c) b += vb(c);
+    return b;
+  };
+  auto rb = [&](const Rates& r) {
+    std::size_t b = vb(r.acc) + vb(r.acc_noise) + vb(r.drho);
+    for (const auto& c : r.dc) b += vb(c);
+    return b;
+  };
+  return yb(y_) + yb(ytmp_) + rb(r0_) + rb(r1_) + vb(nlist_.offsets) + vb(nlist_.indices) +
+         vb(list_ref_x_) + vb(wall_) + vb(wall_region_) + vb(wall_depth_) + vb(mass_) + vb(kinds_) +
+         vb(ids_) + vb(pd2_) + vb(inv_nd_);
+}
+
+void SdpdBackend::read_state(ParticleState& out) const {
+  require_initialized("read_state");
+  out.dimension = model_.box.dimension;
+  out.positions = y_.x;
+  out.velocities = y_.v;
+  out.densities = y_.rho;
+  out.masses = mass_;
+  out.kinds = kinds_;
+  out.ids = ids_;
+}
+
+const std::vector<double>& SdpdBackend::concentrations(int species) const {
+  require_initialized("concentrations");
+  if (species < 0 || species >= static_cast<int>(y_.c.size())) {
+    throw InvalidArgument("species index " + std::to_string(species) + " out of range [0, " +
+                          std::to_string(y_.c.size()) + ")");
+  }
+  return y_.c[species];
+}
+
+void SdpdBackend::set_concentrations(int species, std::span<const double> values) {
+  require_initialized("set_concentrations");
+  (void)concentrations(species);
+  if (values.size() != mass_.size()) {
+    throw InvalidArgument("set_concentrations: " + std::to_string(values.size()) +
+                          " values, expected " + std::to_string(mass_.size()));
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      throw InvalidArgument("set_concentrations: value[" + std::to_string(i) +
+                            "] = " + format_value(values[i]) + " (must be finite)");
+    }
+  }
+  y_.c[species].assign(values.begin(), values.end());
+  species_.apply_dirichlet(y_.c);
+}
+
+std::string SdpdBackend::save() const {
+  require_initialized("save");
+  BlobWriter w;
+  w.put(kMagic);
+  w.put(kBlobVersion);
+  w.put_string(name());
+  w.put(model_.seed);
+  w.put(time_);
+  w.put_vector(y_.x);
+  w.put_vector(y_.v);
+  w.put_vector(y_.rho);
+  w.put<std::uint64_t>(y_.c.size());
+  for (const auto& c : y_.c) w.put_vector(c);
+  return w.take();
+}
+
+void SdpdBackend::restore(std::string_view blob) {
+  require_initialized("restore");
+  BlobReader r(blob);
+  if (r.get<std::uint64_t>() != kMagic)
+    throw InvalidArgument("restore: not a sadr fluid state blob");
+  const auto version = r.get<std::uint32_t>();
+  if (version != kBlobVersion) {
+    throw InvalidArgument("restore: blob version " + std::to_string(version) +
+                          " unsupported (this build reads " + std::to_string(kBlobVersion) + ")");
+  }
+  const std::string backend = r.get_string();
+  if (backend != name())
+    throw InvalidArgument("restore: blob was written by backend '" + backend + "', not 'sdpd'");
+  if (r.get<std::uint64_t>() != model_.seed)
+    throw InvalidArgument("restore: blob seed differs from the model seed");
+  const std::size_t n = mass_.size();
+  Y y;
+  const double t = r.get<double>();
+  y.x = r.get_vector<double>(3 * n);
+  y.v = r.get_vector<double>(3 * n);
+  y.rho = r.get_vector<double>(n);
+  const auto ns = r.get<std::uint64_t>();
+  if (ns != y_.c.size())
+    throw InvalidArgument("restore: blob has " + std::to_string(ns) + " species, model has " +
+                          std::to_string(y_.c.size()));
+  for (std::size_t s = 0; s < ns; ++s) y.c.push_back(r.get_vector<double>(n));
+  if (!r.at_end()) throw InvalidArgument("restore: trailing bytes in state blob");
+  y_ = std::move(y);
+  time_ = t;
+  list_ref_x_.clear();
+}
+
+}  // namespace sadr::fluid

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+/// \file static_backend.hpp
+/// "static": the particles never move; densities, masses and positions stay those of the
+/// initial state. Costs nothing per step when there are no deterministic species. When
+/// there are, it integrates them on the frozen particles with exactly the SDPD species
+/// operator (SPEC eq 17 + mass-action reactions, trapezoidal predictor-corrector, the
+/// same wall conditions), so frozen-particle diffusion references (refs cases 1-4) can be
+/// run without a flow.
+#pragma once
+
+#include "sadr/fluid/fluid_backend.hpp"
+#include "sadr/fluid/neighbor_list.hpp"
+#include "sadr/fluid/species_transport.hpp"
+#include "sadr/fluid/stability.hpp"
+
+namespace sadr::fluid {
+
+class StaticBackend final : public FluidBackend {
+ public:
+  [[nodiscard]] std::string_view name() const override { return "static"; }
+  [[nodiscard]] Capabilities capabilities() const override { return {false, true, false, true}; }
+  void initialize(const FluidModel& model, const ParticleState& initial,
+                  const std::vector<std::vector<double>>& concentrations) override;
+  StepReport advance(std::uint64_t step_index, double time_step) override;
+  void read_state(ParticleState& out) const override;
+  [[nodiscard]] const std::vector<double>& concentrations(int species) const override;
+  void set_concentrations(int species, std::span<const double> values) override;
+  [[nodiscard]] std::string save() const override;
+  void restore(std::string_view blob) override;
+  [[nodiscard]] double time() const override { return time_; }
+  /// Stability limits at the current concentrations.
+  [[nodiscard]] StabilityLimits current_limits() const;
+
+ private:
+  void rates(const std::vector<std::vector<double>>& c, std::vector<std::vector<double>>& dc) const;
+  void require_initialized(const char* what) const;
+
+  bool initialized_ = false;
+  FluidModel model_;
+  ParticleState state_;
+  std::vector<std::vector<double>> c_, ctmp_, dc0_, dc1_;
+  NeighborList nlist_;
+  std::vector<double> k_;    ///< DiffusionTerm coefficient per list entry [1/length^2]
+  std::vector<double> xij_;  ///< minimum-image x_i - x_j per list entry (3 per entry)
+  double max_k_sum_ = 0;
+  SpeciesTransport species_;
+  double time_ = 0;
+};
+
+}  // namespace sadr::fluid

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+/// \file fluid_backend.hpp
+/// The seam between the fluid service and its numerical models (STYLE 3.2).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sadr/common/particle_state.hpp"
+#include "sadr/fluid/fluid_model.hpp"
+
+namespace sadr::fluid {
+
+/// What a backend can do (flags, not speed numbers).
+struct Capabilities {
+  bool moves_particles = false;     ///< positions/velocities evolve
+  bool transports_species = false;  ///< integrates deterministic species (diffusion + reactions)
+  bool thermal_noise = false;       ///< honours FluidModel::temperature > 0
+  bool exact_restart = false;       ///< save()/restore() continue bit-identically
+};
+
+/// Health and progress of one advance() call.
+struct StepReport {
+  double time = 0.0;               ///< model time after the call [time]
+  std::uint32_t substeps = 0;      ///< sub-steps taken
+  double max_speed = 0.0;          ///< max |v| over fluid particles [length/time]
+  double min_density = 0.0;        ///< [mass/length^d]
+  double max_density = 0.0;        ///< [mass/length^d]
+  bool particles_moved = false;    ///< positions changed
+  double stable_dt = 0.0;          ///< smallest stability limit seen [time] (inf if none)
+  std::string limiting_criterion;  ///< "acoustic" | "viscous" | "body_force" | "diffusion" |
+                                   ///< "reaction" | "none"
+};
+
+/// One fluid model. Input specification of the arrays:
+///  - initial: ParticleState (layout in particle_state.hpp); wall particles have kind kWall.
+///  - concentrations: [species][particle], species in FluidModel::species order; each inner
+///    vector has N entries, or the outer vector is empty (all zero). Wall particles with a
+///    Dirichlet condition are overwritten with the prescribed value.
+class FluidBackend {
+ public:
+  virtual ~FluidBackend() = default;
+  [[nodiscard]] virtual std::string_view name() const = 0;
+  [[nodiscard]] virtual Capabilities capabilities() const = 0;
+  /// Validates everything (InvalidArgument naming field, value and range) and sets time = 0.
+  virtual void initialize(const FluidModel& model, const ParticleState& initial,
+                          const std::vector<std::vector<double>>& concentrations) = 0;
+  /// Advances by time_step [time] in sub-steps respecting the stability limits.
+  /// Same (seed, step_index) gives the same result on any thread count.
+  /// Throws InvalidArgument (dt breaks a limit, not forced) or NumericalFailure (blow-up).
+  virtual StepReport advance(std::uint64_t step_index, double time_step) = 0;
+  virtual void read_state(ParticleState& out) const = 0;
+  [[nodiscard]] virtual const std::vector<double>& concentrations(int species) const = 0;
+  /// Overwrites species `species` (N values), e.g. back-transfer from the SSA.
+  virtual void set_concentrations(int species, std::span<const double> values) = 0;
+  /// Versioned binary blob of the full dynamic state (exact restart).
+  [[nodiscard]] virtual std::string save() const = 0;
+  /// Restores a blob from save() of the same backend initialised with the same model.
+  virtual void restore(std::string_view blob) = 0;
+  /// Model time [time].
+  [[nodiscard]] virtual double time() const = 0;
+};
+
+}  // namespace sadr::fluid

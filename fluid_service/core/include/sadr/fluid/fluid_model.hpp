@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: MIT
+/// \file fluid_model.hpp
+/// Everything a fluid backend needs to know about a scene besides the particle arrays.
+///
+/// Units: one consistent system chosen by the scene (SI in the validation cases).
+/// d is the box dimension; "mass density" is mass/length^d; concentrations are
+/// amounts per unit volume [C] = amount/length^d.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sadr/common/particle_state.hpp"
+
+namespace sadr::fluid {
+
+/// Boundary condition of one species on one group of wall particles.
+struct WallCondition {
+  enum class Type {
+    kNoFlux,     ///< wall particles do not exchange the species (homogeneous Neumann)
+    kDirichlet,  ///< wall particles hold `value` [C] at all times
+    kNeumann,    ///< a flux `value` [C length/time] enters the fluid through the wall
+  };
+  Type type = Type::kNoFlux;
+  double value = 0.0;
+};
+
+/// A group of wall particles: the listed particle indices if `particles` is non-empty, else
+/// every wall particle whose position lies in [lo, hi] (inclusive, active axes only).
+/// A wall particle belongs to the first region that contains it.
+struct WallRegion {
+  std::string name;
+  std::vector<std::uint32_t> particles;  ///< explicit membership (indices into the initial state)
+  std::array<double, 3> lo{0, 0, 0};     ///< [length]
+  std::array<double, 3> hi{0, 0, 0};     ///< [length]
+  /// Unit normal pointing from the wall into the fluid (kNeumann walls, Morris walls).
+  std::array<double, 3> inward_normal{1, 0, 0};
+  /// A point on the (planar) wall surface [length]; used by WallModel::kMorrisExtrapolated.
+  std::array<double, 3> surface_point{0, 0, 0};
+};
+
+/// Velocity boundary condition of the wall particles (no-slip in both cases).
+enum class WallModel {
+  kStationary,          ///< wall particles keep v = 0 (SPEC section 2 default)
+  kMorrisExtrapolated,  ///< Morris, Fox & Zhu 1997: in the viscous term of a fluid-wall pair the
+                        ///< wall velocity is -(d_j/d_i) v_i, i.e. v_ij = beta v_i with
+                        ///< beta = min(1.5, 1 + d_j/d_i), d = distance to the region's wall plane
+};
+
+/// One chemical species carried by the particles.
+struct SpeciesSpec {
+  std::string name;
+  double diffusivity = 0.0;  ///< kappa [length^2/time] (>= 0)
+  /// true: the fluid backend integrates it (SPEC eq 17 with reactions);
+  /// false: stochastic species owned by the SSA; the backend only stores the values set by
+  /// set_concentrations() (used e.g. for a Boussinesq feedback).
+  bool deterministic = true;
+  /// Condition on wall particles outside every WallRegion.
+  WallCondition default_wall{};
+  /// One condition per FluidModel::wall_regions entry, or empty (default_wall everywhere).
+  std::vector<WallCondition> wall_conditions;
+};
+
+/// Mass-action reaction among deterministic species, in concentration units.
+/// Rate of reaction: v = rate * prod_s C_s^nu_s / nu_s!  (the 1/nu! matches the RDME
+/// combinatorics, so A + A -> 0 with `rate` k gives dC_A/dt = -k C_A^2, SPEC section 4).
+/// dC_s/dt += (products_s - reactants_s) * v.
+struct ReactionSpec {
+  std::string name;
+  std::vector<std::pair<int, int>> reactants;  ///< (species index, stoichiometry >= 1)
+  std::vector<std::pair<int, int>> products;   ///< (species index, stoichiometry >= 1)
+  double rate = 0.0;                           ///< [C^(1 - order) / time]
+};
+
+/// Boussinesq body acceleration a = coefficient * (C_species - reference) * direction.
+struct BoussinesqSpec {
+  int species = -1;          ///< species index, -1 = off (any species, deterministic or not)
+  double coefficient = 0.0;  ///< g * beta [length/time^2 / C]
+  double reference = 0.0;    ///< C_ref [C]
+  std::array<double, 3> direction{0, 1, 0};  ///< unit vector
+};
+
+enum class DensityMode {
+  kContinuity,  ///< drho/dt from the continuity equation + Molteni-Colagrossi diffusion (default)
+  kSummation,   ///< rho_i = sum_j m_j W_ij (SPEC eq 19)
+};
+
+enum class NoiseDistribution {
+  kGaussian,  ///< Wiener increments (default)
+  kUniform,   ///< zero-mean unit-variance uniform increments (same covariance; weak order 1)
+};
+
+/// The scene. validate() reports every problem at once.
+struct FluidModel {
+  Box box{};
+  double smoothing_length = 0.0;           ///< kernel SUPPORT radius h [length]
+  std::string kernel = "lucy";             ///< "lucy" | "wendland_c2"
+  double reference_density = 1.0;          ///< rho_0 [mass/length^d]
+  double sound_speed = 1.0;                ///< c_0 [length/time]
+  double shear_viscosity = 0.0;            ///< eta [mass/(length^(d-2) time)]
+  double temperature = 0.0;                ///< k_B T [energy]; 0 = deterministic SPH (no draws)
+  std::array<double, 3> gravity{0, 0, 0};  ///< constant body acceleration [length/time^2]
+  std::vector<SpeciesSpec> species;
+  std::vector<ReactionSpec> reactions;
+  std::uint64_t seed = 0;
+
+  DensityMode density_mode = DensityMode::kContinuity;
+  double density_diffusion = 0.1;  ///< Molteni-Colagrossi delta (dimensionless)
+  /// eps_h in r^2/(r^2 + eps_h h^2) of the species Laplacian (same as the RDME graph,
+  /// SPEC section 4; 0 gives the unbiased operator).
+  double diffusion_eps = 0.01;
+  BoussinesqSpec boussinesq{};
+  NoiseDistribution noise = NoiseDistribution::kGaussian;
+  WallModel wall_model = WallModel::kStationary;
+
+  /// Largest sub-step [time]; 0 = automatic (the stability limit). A value above a
+  /// stability limit is refused unless force_time_step.
+  double max_time_step = 0.0;
+  bool force_time_step = false;
+  /// Blow-up band: |rho/rho_0 - 1| must stay below this (dimensionless).
+  double density_band = 0.5;
+  /// Verlet skin as a fraction of h.
+  double neighbor_skin = 0.15;
+  std::vector<WallRegion> wall_regions;
+
+  /// Throws InvalidArgument naming every offending field with value and allowed range.
+  void validate() const;
+  /// Region index of every particle (-1 for non-wall particles and walls in no region); the
+  /// first listed region that contains a wall particle wins. Throws InvalidArgument for an
+  /// explicit particle index out of range.
+  [[nodiscard]] std::vector<std::int32_t> assign_wall_regions(const ParticleState& state) const;
+  /// Index of the species called `name`, or -1.
+  [[nodiscard]] int species_index(const std::string& name) const;
+};
+
+}  // namespace sadr::fluid

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+/// \file periodic_box.hpp
+/// Minimum-image displacements and position wrapping for a sadr::Box.
+#pragma once
+
+#include <array>
+
+#include "sadr/common/particle_state.hpp"
+
+namespace sadr::fluid {
+
+/// Precomputed box geometry. Positions are kept inside [lo, hi) on periodic axes.
+class PeriodicBox {
+ public:
+  PeriodicBox() = default;
+  explicit PeriodicBox(const Box& box) : box_(box) {
+    for (int a = 0; a < 3; ++a) {
+      len_[a] = box.hi[a] - box.lo[a];
+      half_[a] = 0.5 * len_[a];
+      per_[a] = a < box.dimension && box.periodic[a];
+      walled_[a] = a < box.dimension && !box.periodic[a];
+    }
+  }
+  /// Replaces d (= x_i - x_j) by its minimum image on periodic axes (|d_a| <= L_a/2).
+  void minimum_image(double* d) const {
+    for (int a = 0; a < 3; ++a) {
+      if (!per_[a]) continue;
+      if (d[a] > half_[a]) {
+        d[a] -= len_[a];
+      } else if (d[a] < -half_[a]) {
+        d[a] += len_[a];
+      }
+    }
+  }
+  /// Wraps a position into [lo, hi) on periodic axes (one period at most per call is enough
+  /// for sub-step displacements; larger jumps are caught by the blow-up check).
+  void wrap(double* x) const {
+    for (int a = 0; a < 3; ++a) {
+      if (!per_[a]) continue;
+      if (x[a] >= box_.hi[a]) {
+        x[a] -= len_[a];
+      } else if (x[a] < box_.lo[a]) {
+        x[a] += len_[a];
+      }
+    }
+  }
+  /// True if x lies inside the box on every active walled axis.
+  [[nodiscard]] bool inside(const double* x) const {
+    for (int a = 0; a < 3; ++a) {
+      if (walled_[a] && (x[a] < box_.lo[a] || x[a] > box_.hi[a])) return false;
+    }
+    return true;
+  }
+  [[nodiscard]] const Box& box() const { return box_; }
+  [[nodiscard]] bool periodic(int axis) const { return per_[axis]; }
+  [[nodiscard]] double length(int axis) const { return len_[axis]; }
+
+ private:
+  Box box_{};
+  std::array<double, 3> len_{1, 1, 1}, half_{0.5, 0.5, 0.5};
+  std::array<bool, 3> per_{false, false, false};
+  std::array<bool, 3> walled_{false, false, false};
+};
+
+}  // namespace sadr::fluid

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: MIT
+/// \file stability.hpp
+/// Explicit time-step limits (SPEC section 5; Morris, Fox & Zhu 1997; Monaghan 1992).
+/// The coefficients are Morris' for his smoothing length h_M; our h is the kernel SUPPORT
+/// radius, and Morris' kernels have support 2 h_M, so h_M = h/2 below. Coefficients:
+///  - acoustic   dt <= 0.25 h_M / (c0 + v_max)
+///  - viscous    dt <= min(0.125 rho_min h_M^2 / eta, 1 / (eta max_i (a+b)/(eta rho_i) sum_j V_j
+///  F_ij))
+///               the second is the Gershgorin bound of the discrete viscous operator
+///  - body force dt <= 0.25 sqrt(h_M / |a|_max)   (gravity + Boussinesq)
+///  - diffusion  dt <= min(0.125 h_M^2 / kappa_max, 1 / max_i sum_j 2 kappa_max K_ij)
+///               the second bound is the Gershgorin bound of the discrete operator
+///               (Heun is stable for real eigenvalues in [-2/dt, 0]); it is the binding
+///               one for wide kernels (h > ~2.5 dx).
+///  - reaction   dt <= 1 / max_i |J_i|, with |J_i| the reaction Jacobian scale
+///               (SpeciesTransport::reaction_rate_scale), margin 2 on Heun's limit.
+#pragma once
+
+#include <limits>
+#include <string>
+
+namespace sadr::fluid {
+
+struct StabilityLimits {
+  static constexpr double kNone = std::numeric_limits<double>::infinity();
+  double acoustic = kNone;    ///< [time]
+  double viscous = kNone;     ///< [time]
+  double body_force = kNone;  ///< [time]
+  double diffusion = kNone;   ///< [time]
+  double reaction = kNone;    ///< [time]
+
+  /// The binding limit [time] and its name ("none" if all are infinite).
+  [[nodiscard]] std::pair<double, std::string> smallest() const {
+    std::pair<double, std::string> best{kNone, "none"};
+    auto take = [&](double v, const char* n) {
+      if (v < best.first) best = {v, n};
+    };
+    take(acoustic, "acoustic");
+    take(viscous, "viscous");
+    take(body_force, "body_force");
+    take(diffusion, "diffusion");
+    take(reaction, "reaction");
+    return best;
+  }
+  /// Throws InvalidArgument naming the first limit that dt [time] breaks.
+  void check(double dt) const;
+};
+
+}  // namespace sadr::fluid

@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/fluid/fluid_model.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "sadr/common/status.hpp"
+#include "sadr/fluid/kernel.hpp"
+
+namespace sadr::fluid {
+
+KernelType parse_kernel(std::string_view name) {
+  if (name == "lucy") return KernelType::kLucy;
+  if (name == "wendland_c2") return KernelType::kWendlandC2;
+  throw InvalidArgument(
+      "kernel = '" + std::string(name) + "' is unknown (known: lucy, wendland_c2)",
+      {{"field", "kernel"}, {"value", std::string(name)}});
+}
+
+namespace {
+struct Problems {
+  std::string text;
+  std::vector<std::pair<std::string, std::string>> details;
+  void add(const std::string& field, double value, const std::string& range) {
+    text += (text.empty() ? "" : "; ") + field + " = " + format_value(value) + " (" + range + ")";
+    details.emplace_back(field, format_value(value));
+  }
+  void add_text(const std::string& field, const std::string& message) {
+    text += (text.empty() ? "" : "; ") + field + ": " + message;
+    details.emplace_back(field, message);
+  }
+};
+bool finite_pos(double v) {
+  return std::isfinite(v) && v > 0;
+}
+bool finite_nonneg(double v) {
+  return std::isfinite(v) && v >= 0;
+}
+}  // namespace
+
+void FluidModel::validate() const {
+  Problems p;
+  try {
+    box.validate();
+  } catch (const Error& e) {
+    p.add_text("box", e.what());
+  }
+  if (!finite_pos(smoothing_length))
+    p.add("smoothing_length", smoothing_length, "must be finite and > 0");
+  if (kernel != "lucy" && kernel != "wendland_c2") {
+    p.add_text("kernel", "'" + kernel + "' is unknown (known: lucy, wendland_c2)");
+  }
+  if (!finite_pos(reference_density)) p.add("reference_density", reference_density, "must be > 0");
+  if (!finite_pos(sound_speed)) p.add("sound_speed", sound_speed, "must be > 0");
+  if (!finite_nonneg(shear_viscosity)) p.add("shear_viscosity", shear_viscosity, "must be >= 0");
+  if (!finite_nonneg(temperature)) p.add("temperature", temperature, "k_B T must be >= 0");
+  if (temperature > 0 && shear_viscosity <= 0) {
+    p.add("temperature", temperature,
+          "thermal noise needs shear_viscosity > 0 (fluctuation-dissipation)");
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(gravity[a]))
+      p.add("gravity[" + std::to_string(a) + "]", gravity[a], "must be finite");
+  }
+  if (!finite_nonneg(density_diffusion))
+    p.add("density_diffusion", density_diffusion, "must be >= 0");
+  if (!finite_nonneg(diffusion_eps)) p.add("diffusion_eps", diffusion_eps, "must be >= 0");
+  if (!finite_nonneg(max_time_step))
+    p.add("max_time_step", max_time_step, "must be >= 0 (0 = automatic)");
+  if (!(density_band > 0 && density_band < 1))
+    p.add("density_band", density_band, "must be in (0, 1)");
+  if (!(neighbor_skin >= 0 && neighbor_skin <= 1))
+    p.add("neighbor_skin", neighbor_skin, "must be in [0, 1]");
+  const int ns = static_cast<int>(species.size());
+  for (int s = 0; s < ns; ++s) {
+    const auto& sp = species[s];
+    const std::string f = "species[" + std::to_string(s) + "]";
+    if (sp.name.empty()) p.add_text(f + ".name", "must not be empty");
+    for (int t = 0; t < s; ++t) {
+      if (species[t].name == sp.name && !sp.name.empty())
+        p.add_text(f + ".name", "duplicate '" + sp.name + "'");
+    }
+    if (!finite_nonneg(sp.diffusivity)) p.add(f + ".diffusivity", sp.diffusivity, "must be >= 0");
+    if (!sp.wall_conditions.empty() && sp.wall_conditions.size() != wall_regions.size()) {
+      p.add(
+          f + ".wall_conditions size", static_cast<double>(sp.wall_conditions.size()),
+          "must be 0 or the number of wall_regions (" + std::to_string(wall_regions.size()) + ")");
+    }
+    auto check_wc = [&](const WallCondition& wc, const std::string& name) {
+      if (!std::isfinite(wc.value)) p.add(name + ".value", wc.value, "must be finite");
+      if (wc.type == WallCondition::Type::kNeumann && sp.diffusivity <= 0) {
+        p.add(f + ".diffusivity", sp.diffusivity, "a Neumann wall needs diffusivity > 0");
+      }
+    };
+    check_wc(sp.default_wall, f + ".default_wall");
+    for (std::size_t w = 0; w < sp.wall_conditions.size(); ++w) {
+      check_wc(sp.wall_conditions[w], f + ".wall_conditions[" + std::to_string(w) + "]");
+    }
+  }
+  for (std::size_t r = 0; r < reactions.size(); ++r) {
+    const auto& re = reactions[r];
+    const std::string f = "reactions[" + std::to_string(r) + "]";
+    if (!finite_nonneg(re.rate)) p.add(f + ".rate", re.rate, "must be >= 0");
+    auto check_side = [&](const std::vector<std::pair<int, int>>& side, const std::string& nm) {
+      for (const auto& [s, nu] : side) {
+        if (s < 0 || s >= ns) {
+          p.add(f + "." + nm + " species", s, "must index species [0, " + std::to_string(ns) + ")");
+        } else if (!species[s].deterministic) {
+          p.add_text(f + "." + nm,
+                     "species '" + species[s].name +
+                         "' is stochastic; fluid reactions use deterministic species only");
+        }
+        if (nu < 1) p.add(f + "." + nm + " stoichiometry", nu, "must be >= 1");
+      }
+    };
+    check_side(re.reactants, "reactants");
+    check_side(re.products, "products");
+  }
+  if (boussinesq.species >= ns || boussinesq.species < -1) {
+    p.add("boussinesq.species", boussinesq.species,
+          "must be -1 (off) or a species index < " + std::to_string(ns));
+  }
+  if (!std::isfinite(boussinesq.coefficient) || !std::isfinite(boussinesq.reference)) {
+    p.add("boussinesq.coefficient", boussinesq.coefficient,
+          "coefficient and reference must be finite");
+  }
+  for (std::size_t w = 0; w < wall_regions.size(); ++w) {
+    const auto& n = wall_regions[w].inward_normal;
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(std::fabs(len - 1.0) < 1e-6)) {
+      p.add("wall_regions[" + std::to_string(w) + "].inward_normal |n|", len,
+            "must be a unit vector");
+    }
+  }
+  if (!p.text.empty()) throw InvalidArgument("invalid fluid model: " + p.text, p.details);
+}
+
+std::vector<std::int32_t> FluidModel::assign_wall_regions(const ParticleState& state) const {
+  const std::size_t n = state.size();
+  std::vector<std::int32_t> region(n, -1);
+  for (std::size_t w = wall_regions.size();
+       w-- > 0;) {  // reverse: earlier regions overwrite later ones
+    const auto& reg = wall_regions[w];
+    if (!reg.particles.empty()) {
+      for (const auto k : reg.particles) {
+        if (k >= n) {
+          throw InvalidArgument("wall_regions[" + std::to_string(w) + "] ('" + reg.name +
+                                "') lists particle " + std::to_string(k) + ", but there are " +
+                                std::to_string(n));
+        }
+        if (state.kind(k) == ParticleKind::kWall) region[k] = static_cast<std::int32_t>(w);
+      }
+      continue;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (state.kind(i) != ParticleKind::kWall) continue;
+      bool in = true;
+      for (int a = 0; a < box.dimension; ++a) {
+        const double x = state.positions[3 * i + a];
+        in = in && x >= reg.lo[a] && x <= reg.hi[a];
+      }
+      if (in) region[i] = static_cast<std::int32_t>(w);
+    }
+  }
+  return region;
+}
+
+int FluidModel::species_index(const std::string& name) const {
+  for (std::size_t s = 0; s < species.size(); ++s) {
+    if (species[s].name == name) return static_cast<int>(s);
+  }
+  return -1;
+}
+
+}  // namespace sadr::fluid

@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/fluid/neighbor_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "sadr/common/status.hpp"
+#include "sadr/fluid/parallel.hpp"
+
+namespace sadr::fluid {
+
+CellListBuilder::CellListBuilder(const Box& box, double cutoff) : pbox_(box), cutoff_(cutoff) {
+  box.validate();
+  if (!(std::isfinite(cutoff) && cutoff > 0)) {
+    throw InvalidArgument("neighbour cutoff = " + format_value(cutoff) +
+                          " (must be finite and > 0)");
+  }
+  for (int a = 0; a < box.dimension; ++a) {
+    const double len = box.length(a);
+    if (box.periodic[a] && len < 2.0 * cutoff) {
+      throw InvalidArgument("periodic axis " + std::to_string(a) + " has length " +
+                            format_value(len) + " < 2 x neighbour cutoff (" +
+                            format_value(2.0 * cutoff) +
+                            "); enlarge the box or reduce smoothing_length");
+    }
+    ncell_[a] = std::max(1, static_cast<int>(std::floor(len / cutoff)));
+    ncell_[a] = std::min(ncell_[a], 1 << 20);
+    inv_cell_[a] = ncell_[a] / len;
+  }
+}
+
+void CellListBuilder::build(std::span<const double> positions, NeighborList& out) const {
+  const std::size_t n = positions.size() / 3;
+  const Box& box = pbox_.box();
+  const int dim = box.dimension;
+  const std::size_t ncells =
+      static_cast<std::size_t>(ncell_[0]) * static_cast<std::size_t>(ncell_[1]) * ncell_[2];
+  // Bin particles (counting sort; deterministic).
+  std::vector<std::uint32_t> cell_of(n);
+  std::vector<std::uint32_t> cell_start(ncells + 1, 0);
+  std::vector<std::array<int, 3>> coord(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<int, 3> c{0, 0, 0};
+    for (int a = 0; a < dim; ++a) {
+      int k = static_cast<int>(std::floor((positions[3 * i + a] - box.lo[a]) * inv_cell_[a]));
+      c[a] = std::clamp(k, 0, ncell_[a] - 1);
+    }
+    coord[i] = c;
+    cell_of[i] = static_cast<std::uint32_t>(
+        (static_cast<std::size_t>(c[2]) * ncell_[1] + c[1]) * ncell_[0] + c[0]);
+    ++cell_start[cell_of[i] + 1];
+  }
+  for (std::size_t c = 0; c < ncells; ++c) cell_start[c + 1] += cell_start[c];
+  std::vector<std::uint32_t> cell_particles(n);
+  {
+    std::vector<std::uint32_t> fill(cell_start.begin(), cell_start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      cell_particles[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  }
+  // Distinct neighbouring cell coordinates per axis for each cell coordinate.
+  auto axis_cells = [&](int a, int c, int* out_cells) -> int {
+    if (a >= dim) {
+      out_cells[0] = 0;
+      return 1;
+    }
+    int cnt = 0;
+    for (int o = -1; o <= 1; ++o) {
+      int k = c + o;
+      if (pbox_.periodic(a)) {
+        k = (k + ncell_[a]) % ncell_[a];
+      } else if (k < 0 || k >= ncell_[a]) {
+        continue;
+      }
+      bool dup = false;
+      for (int m = 0; m < cnt; ++m) dup = dup || out_cells[m] == k;
+      if (!dup) out_cells[cnt++] = k;
+    }
+    return cnt;
+  };
+  const double rc2 = cutoff_ * cutoff_;
+  auto visit = [&](std::size_t i, auto&& emit) {
+    int cx[3], cy[3], cz[3];
+    const int nx = axis_cells(0, coord[i][0], cx);
+    const int ny = axis_cells(1, coord[i][1], cy);
+    const int nz = axis_cells(2, coord[i][2], cz);
+    const double* xi = &positions[3 * i];
+    for (int iz = 0; iz < nz; ++iz) {
+      for (int iy = 0; iy < ny; ++iy) {
+        for (int ix = 0; ix < nx; ++ix) {
+          const std::size_t c =
+              (static_cast<std::size_t>(cz[iz]) * ncell_[1] + cy[iy]) * ncell_[0] + cx[ix];
+          for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
+            const std::uint32_t j = cell_particles[k];
+            if (j == i) continue;
+            double d[3] = {xi[0] - positions[3 * j], xi[1] - positions[3 * j + 1],
+                           xi[2] - positions[3 * j + 2]};
+            pbox_.minimum_image(d);
+            if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc2) emit(j);
+          }
+        }
+      }
+    }
+  };
+  out.offsets.assign(n + 1, 0);
+  const auto ni = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) if (ni > kMinParallel)
+  for (std::int64_t i = 0; i < ni; ++i) {
+    std::uint32_t cnt = 0;
+    visit(static_cast<std::size_t>(i), [&](std::uint32_t) { ++cnt; });
+    out.offsets[static_cast<std::size_t>(i) + 1] = cnt;
+  }
+  for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.indices.resize(out.offsets[n]);
+#pragma omp parallel for schedule(static) if (ni > kMinParallel)
+  for (std::int64_t i = 0; i < ni; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    std::uint32_t pos = out.offsets[iu];
+    visit(iu, [&](std::uint32_t j) { out.indices[pos++] = j; });
+    std::sort(out.indices.begin() + out.offsets[iu], out.indices.begin() + out.offsets[iu + 1]);
+  }
+}
+
+NeighborList brute_force_neighbors(const Box& box, double cutoff,
+                                   std::span<const double> positions) {
+  const PeriodicBox pbox(box);
+  const std::size_t n = positions.size() / 3;
+  NeighborList out;
+  out.offsets.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j) continue;
+      double d[3] = {positions[3 * i] - positions[3 * j],
+                     positions[3 * i + 1] - positions[3 * j + 1],
+                     positions[3 * i + 2] - positions[3 * j + 2]};
+      pbox.minimum_image(d);
+      if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < cutoff * cutoff) {
+        out.indices.push_back(static_cast<std::uint32_t>(j));
+      }
+    }
+    out.offsets[i + 1] = static_cast<std::uint32_t>(out.indices.size());
+  }
+  return out;
+}
+
+}  // namespace sadr::fluid

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/fluid/species_transport.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace sadr::fluid {
+
+void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state) {
+  const std::size_t n = state.size();
+  const int ns = static_cast<int>(model.species.size());
+  const int nr = static_cast<int>(model.wall_regions.size());
+  transported_.clear();
+  two_kappa_.assign(ns, 0.0);
+  max_kappa_ = 0;
+  normal_.clear();
+  for (const auto& w : model.wall_regions) normal_.push_back(w.inward_normal);
+  region_ = model.assign_wall_regions(state);
+  reacts_.assign(n, 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (state.kind(i) == ParticleKind::kWall) reacts_[i] = 0;
+  }
+  roles_.assign(ns, {});
+  neumann_grad_.assign(ns, std::vector<double>(nr + 1, 0.0));
+  dirichlet_.assign(ns, std::vector<double>(nr + 1, 0.0));
+  for (int s = 0; s < ns; ++s) {
+    const auto& sp = model.species[s];
+    if (sp.deterministic) transported_.push_back(s);
+    two_kappa_[s] = 2.0 * sp.diffusivity;
+    if (sp.deterministic) max_kappa_ = std::max(max_kappa_, sp.diffusivity);
+    auto cond = [&](int reg) -> const WallCondition& {
+      return (reg < 0 || sp.wall_conditions.empty()) ? sp.default_wall : sp.wall_conditions[reg];
+    };
+    for (int reg = -1; reg < nr; ++reg) {
+      const auto& wc = cond(reg);
+      dirichlet_[s][reg + 1] = wc.value;
+      neumann_grad_[s][reg + 1] = sp.diffusivity > 0 ? wc.value / sp.diffusivity : 0.0;
+    }
+    roles_[s].assign(n, Role::kFree);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (state.kind(i) != ParticleKind::kWall) continue;
+      switch (cond(region_[i]).type) {
+        case WallCondition::Type::kNoFlux:
+          roles_[s][i] = Role::kNoFlux;
+          break;
+        case WallCondition::Type::kDirichlet:
+          roles_[s][i] = Role::kDirichlet;
+          break;
+        case WallCondition::Type::kNeumann:
+          roles_[s][i] = Role::kNeumann;
+          break;
+      }
+    }
+  }
+  reactions_.clear();
+  for (const auto& re : model.reactions) {
+    CompiledReaction cr;
+    cr.rate = re.rate;
+    std::map<int, int> net;
+    for (const auto& [s, nu] : re.reactants) {
+      double fact = 1;
+      for (int k = 2; k <= nu; ++k) fact *= k;
+      cr.reactants.push_back({s, nu, 1.0 / fact});
+      net[s] -= nu;
+    }
+    for (const auto& [s, nu] : re.products) net[s] += nu;
+    for (const auto& [s, d] : net) {
+      if (d != 0) cr.delta.emplace_back(s, d);
+    }
+    reactions_.push_back(std::move(cr));
+  }
+}
+
+void SpeciesTransport::apply_dirichlet(std::vector<std::vector<double>>& c) const {
+  for (std::size_t s = 0; s < roles_.size(); ++s) {
+    for (std::size_t i = 0; i < roles_[s].size(); ++i) {
+      if (roles_[s][i] == Role::kDirichlet) c[s][i] = dirichlet_[s][region_[i] + 1];
+    }
+  }
+}
+
+double SpeciesTransport::velocity(const CompiledReaction& r, std::size_t i,
+                                  const std::vector<std::vector<double>>& c) const {
+  double v = r.rate;
+  for (const auto& t : r.reactants) {
+    const double x = c[t.species][i];
+    double p = x;
+    for (int k = 1; k < t.nu; ++k) p *= x;
+    v *= p * t.inv_factorial;
+  }
+  return v;
+}
+
+void SpeciesTransport::add_reactions(std::size_t i, const std::vector<std::vector<double>>& c,
+                                     std::vector<std::vector<double>>& dc) const {
+  if (!reacts_[i]) return;
+  for (const auto& r : reactions_) {
+    const double v = velocity(r, i, c);
+    for (const auto& [s, d] : r.delta) dc[s][i] += d * v;
+  }
+}
+
+double SpeciesTransport::reaction_rate_scale(const std::vector<std::vector<double>>& c,
+                                             const ParticleState& state) const {
+  double worst = 0;
+  for (std::size_t i = 0; i < state.size(); ++i) {
+    if (!reacts_[i]) continue;
+    double sum = 0;
+    for (const auto& r : reactions_) {
+      for (const auto& t : r.reactants) {
+        // dv/dC_s = rate * nu C_s^(nu-1)/nu! * prod_{other reactants}
+        double d = r.rate * t.nu * t.inv_factorial;
+        for (int k = 1; k < t.nu; ++k) d *= c[t.species][i];
+        for (const auto& o : r.reactants) {
+          if (&o == &t) continue;
+          double p = 1;
+          for (int k = 0; k < o.nu; ++k) p *= c[o.species][i];
+          d *= p * o.inv_factorial;
+        }
+        sum += t.nu * std::fabs(d);
+      }
+    }
+    worst = std::max(worst, sum);
+  }
+  return worst;
+}
+
+}  // namespace sadr::fluid

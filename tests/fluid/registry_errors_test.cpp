@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: MIT
+// Unit: the registry, model validation and bad-input / stability / blow-up errors.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "fluid_test_scenes.hpp"
+#include "sadr/common/status.hpp"
+#include "sadr/fluid/builtin_backends.hpp"
+
+namespace sadr::fluid {
+namespace {
+
+using test::LatticeSpec;
+
+BackendRegistry builtin() {
+  BackendRegistry r;
+  register_builtin_backends(r);
+  return r;
+}
+
+FluidModel small_model(ParticleState& p) {
+  LatticeSpec s;
+  s.dimension = 2;
+  s.n = {8, 8, 1};
+  s.dx = 0.1;
+  FluidModel m;
+  p = test::make_lattice(s, m.box);
+  p.masses.assign(p.size(), 0.01);
+  m.smoothing_length = 0.3;
+  m.reference_density = 1.0;
+  m.sound_speed = 1.0;
+  m.shear_viscosity = 0.01;
+  return m;
+}
+
+TEST(Registry, BuiltinNamesAndCreation) {
+  const auto r = builtin();
+  EXPECT_EQ(r.names(), (std::vector<std::string>{"sdpd", "static"}));
+  EXPECT_EQ(r.create("sdpd")->name(), "sdpd");
+  EXPECT_EQ(r.create("static")->name(), "static");
+  EXPECT_TRUE(r.create("sdpd")->capabilities().moves_particles);
+  EXPECT_FALSE(r.create("static")->capabilities().moves_particles);
+}
+
+TEST(Registry, UnknownNameListsKnownOnes) {
+  const auto r = builtin();
+  try {
+    (void)r.create("tdpd");
+    FAIL() << "expected InvalidArgument";
+  } catch (const InvalidArgument& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("tdpd"), std::string::npos);
+    EXPECT_NE(msg.find("sdpd, static"), std::string::npos) << msg;
+  }
+}
+
+TEST(Registry, DuplicateAndEmptyRejected) {
+  auto r = builtin();
+  EXPECT_THROW(r.add("sdpd", [] { return std::unique_ptr<FluidBackend>{}; }), InvalidArgument);
+  EXPECT_THROW(r.add("", [] { return std::unique_ptr<FluidBackend>{}; }), InvalidArgument);
+}
+
+TEST(ModelValidation, ReportsEveryProblemWithFieldAndValue) {
+  FluidModel m;
+  m.smoothing_length = -1;
+  m.shear_viscosity = -2;
+  m.kernel = "gauss";
+  m.species.push_back({"A", -0.5, true, {}, {}});
+  m.reactions.push_back({"r", {{3, 1}}, {}, 1.0});
+  try {
+    m.validate();
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    const std::string msg = e.what();
+    for (const char* field : {"smoothing_length = -1", "shear_viscosity = -2", "gauss",
+                              "species[0].diffusivity", "reactions[0].reactants species"}) {
+      EXPECT_NE(msg.find(field), std::string::npos) << field << " missing in: " << msg;
+    }
+  }
+}
+
+TEST(BackendErrors, CallsBeforeInitializeFail) {
+  for (const char* name : {"sdpd", "static"}) {
+    auto b = builtin().create(name);
+    EXPECT_THROW(b->advance(0, 0.1), FailedPrecondition) << name;
+    EXPECT_THROW((void)b->save(), FailedPrecondition) << name;
+  }
+}
+
+TEST(BackendErrors, BadInitialStateAndConcentrations) {
+  ParticleState p;
+  FluidModel m = small_model(p);
+  auto b = builtin().create("sdpd");
+  ParticleState wrong_dim = p;
+  wrong_dim.dimension = 3;
+  EXPECT_THROW(b->initialize(m, wrong_dim, {}), InvalidArgument);
+  m.species.push_back({"A", 0.1, true, {}, {}});
+  EXPECT_THROW(b->initialize(m, p, {std::vector<double>(3, 0.0)}), InvalidArgument);
+  ParticleState neg = p;
+  neg.masses[5] = -1;
+  EXPECT_THROW(b->initialize(m, neg, {}), InvalidArgument);
+  b->initialize(m, p, {});
+  EXPECT_THROW(b->advance(0, -1.0), InvalidArgument);
+  EXPECT_THROW(b->set_concentrations(0, std::vector<double>(2, 0.0)), InvalidArgument);
+  EXPECT_THROW((void)b->concentrations(1), InvalidArgument);
+  EXPECT_THROW(b->restore("garbage"), InvalidArgument);
+}
+
+TEST(Stability, RefusesTimeStepNamingTheLimitUnlessForced) {
+  ParticleState p;
+  FluidModel m = small_model(p);
+  m.max_time_step = 1.0;  // acoustic limit is 0.25 * 0.15 / 1 = 0.0375
+  auto b = builtin().create("sdpd");
+  b->initialize(m, p, {});
+  try {
+    b->advance(0, 1.0);
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("acoustic"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("limit 0.037"), std::string::npos) << msg;
+  }
+  m.max_time_step = 0;  // automatic: splits into sub-steps
+  b->initialize(m, p, {});
+  const auto rep = b->advance(0, 1.0);
+  EXPECT_EQ(rep.limiting_criterion, "acoustic");
+  EXPECT_NEAR(rep.stable_dt, 0.0375, 1e-12);
+  EXPECT_EQ(rep.substeps, 27u);  // ceil(1 / 0.0375)
+  EXPECT_NEAR(rep.time, 1.0, 1e-12);
+}
+
+TEST(Stability, BlowUpIsDiagnosed) {
+  ParticleState p;
+  FluidModel m = small_model(p);
+  p.velocities[3 * 10] = 50.0;  // a violent kick with a forced, far too large step
+  m.max_time_step = 0.5;
+  m.force_time_step = true;
+  auto b = builtin().create("sdpd");
+  b->initialize(m, p, {});
+  try {
+    for (std::uint64_t s = 0; s < 20; ++s) b->advance(s, 0.5);
+    FAIL() << "expected NumericalFailure";
+  } catch (const NumericalFailure& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("particle id"), std::string::npos) << msg;
+    bool has_step = false;
+    for (const auto& [k, v] : e.details()) has_step = has_step || k == "step";
+    EXPECT_TRUE(has_step);
+  }
+}
+
+}  // namespace
+}  // namespace sadr::fluid

@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+// Validation: Poiseuille start-up (Morris, Fox & Zhu 1997; refs case 5) with the SDPD backend,
+// k_B T = 0, stationary wall particles, at three resolutions, with the observed order.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "../fluid_test_scenes.hpp"
+#include "../reference_solutions.hpp"
+#include "line_scenes.hpp"
+#include "sdpd/sdpd_backend.hpp"
+
+namespace sadr::fluid::test {
+namespace {
+
+constexpr double kH = 1e-3, kNu = 1e-6, kRho = 1000.0, kG = 2e-4, kUmax = kG * kH * kH / (8 * kNu);
+
+struct PoiseuilleRun {
+  std::vector<double> t;
+  std::vector<double> l2, linf;
+};
+
+/// ny fluid rows of spacing dx = H/ny, 8 columns (periodic x), 4 wall layers per side, h = 3 dx.
+PoiseuilleRun run_poiseuille(int ny, WallModel wall_model, double h_over_dx = 3.0,
+                             double max_dt = 0.0) {
+  LatticeSpec ls;
+  ls.dimension = 2;
+  ls.n = {8, ny, 1};
+  ls.dx = kH / ny;
+  ls.periodic = {true, false, false};
+  ls.wall_layers = 4;
+  ls.rho0 = kRho;
+  FluidModel m;
+  const ParticleState p = make_lattice(ls, m.box);
+  m.smoothing_length = h_over_dx * ls.dx;
+  m.reference_density = kRho;
+  m.sound_speed = 40.0 * kUmax;
+  m.shear_viscosity = kRho * kNu;
+  m.gravity = {kG, 0, 0};
+  m.max_time_step = max_dt;
+  m.wall_model = wall_model;
+  m.wall_regions = {{"bottom", {}, {-1, -1, -1}, {1, 0, 1}, {0, 1, 0}, {0, 0, 0}},
+                    {"top", {}, {-1, kH, -1}, {1, 1, 1}, {0, -1, 0}, {0, kH, 0}}};
+  SdpdBackend b;
+  b.initialize(m, p, {});
+  PoiseuilleRun out;
+  double t_prev = 0;
+  std::uint64_t step = 0;
+  for (double t : {0.0225, 0.045, 0.1125, 0.225, 1.0}) {
+    b.advance(step++, t - t_prev);
+    t_prev = t;
+    ParticleState s;
+    b.read_state(s);
+    std::vector<double> u, ref, w;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (s.kind(i) == ParticleKind::kWall) continue;
+      u.push_back(s.velocities[3 * i]);
+      ref.push_back(poiseuille_exact(s.positions[3 * i + 1], b.time()));
+      w.push_back(s.masses[i] / s.densities[i]);
+    }
+    const auto [l2, linf] = scaled_norms(u, ref, w, kUmax);
+    out.t.push_back(t);
+    out.l2.push_back(l2);
+    out.linf.push_back(linf);
+  }
+  return out;
+}
+
+class PoiseuilleValidation : public ::testing::TestWithParam<WallModel> {};
+
+TEST_P(PoiseuilleValidation, StartupAgainstMorrisSeriesThreeResolutions) {
+  std::vector<PoiseuilleRun> runs;
+  const int nys[] = {20, 40, 80};
+  const char* wall = GetParam() == WallModel::kStationary ? "stationary" : "morris";
+  for (int ny : nys) {
+    runs.push_back(run_poiseuille(ny, GetParam()));
+    for (std::size_t k = 0; k < runs.back().t.size(); ++k) {
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "case=poiseuille wall=%s H/dx=%d h/dx=3 t=%g scaled_L2=%.3e scaled_Linf=%.3e",
+                    wall, ny, runs.back().t[k], runs.back().l2[k], runs.back().linf[k]);
+      report(line);
+    }
+  }
+  for (std::size_t k = 0; k < runs[0].t.size(); ++k) {
+    const double p1 = std::log(runs[0].l2[k] / runs[1].l2[k]) / std::log(2.0);
+    const double p2 = std::log(runs[1].l2[k] / runs[2].l2[k]) / std::log(2.0);
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "case=poiseuille_order wall=%s t=%g order_20_40=%.2f order_40_80=%.2f", wall,
+                  runs[0].t[k], p1, p2);
+    report(line);
+  }
+  // Thresholds: the stationary-wall errors measured at H/dx = 20, 40, 80 rounded up
+  // (docs/fluid-core.md).
+  const double kLinfMax[] = {0.15, 0.08, 0.045};
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    for (std::size_t k = 0; k < runs[r].t.size(); ++k)
+      EXPECT_LT(runs[r].linf[k], kLinfMax[r]) << "ny " << nys[r];
+  }
+  EXPECT_LT(runs[2].l2.back(), 0.5 * runs[0].l2.back());  // converges at the final time
+}
+
+INSTANTIATE_TEST_SUITE_P(Walls, PoiseuilleValidation,
+                         ::testing::Values(WallModel::kStationary, WallModel::kMorrisExtrapolated),
+                         [](const ::testing::TestParamInfo<WallModel>& param_info) {
+                           return param_info.param == WallModel::kStationary ? "stationary"
+                                                                             : "morris";
+                         });
+
+}  // namespace
+}  // namespace sadr::fluid::test
