@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+/// \file model.hpp
+/// The reaction-diffusion model of ssa_service: species, mass-action reactions,
+/// boundary conditions and the diffusion-graph parameters (SPEC section 4).
+///
+/// Units: one consistent system chosen by the scene. Lengths [L], time [T],
+/// copy numbers are dimensionless; a voxel volume V_i = m_i / rho_i has units
+/// [L^d] in d dimensions. Rate constants are given in concentration units and
+/// converted per voxel by sadr::ssa::mass_action_constant() (rate_conversion.hpp),
+/// the one place where that scaling lives.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "sadr/common/particle_state.hpp"
+
+namespace sadr::ssa {
+
+/// How the per-edge weight D_ij of the particle graph is formed (SPEC section 4).
+///
+/// kVolume is the DEFAULT: its pure-diffusion equilibrium is a uniform
+/// concentration (d_ij V_i = d_ji V_j), which is what the deterministic SPH
+/// concentration equation (SPEC eq 17) relaxes to on non-uniform particles
+/// (weakly compressible fluid, wall particles of another mass). kSymmetric
+/// (drawert2019 eq 28, SpatialPy) relaxes to equal counts per voxel instead;
+/// both coincide on uniform particles.
+enum class JumpConvention {
+  kSymmetric,  ///< d_ij = kappa D_ij, D_ij = 2 m_i m_j/(m_i+m_j) (rho_i+rho_j)/(rho_i rho_j) reg
+               ///< F_ij
+  kVolume,     ///< d_ij = 2 kappa V_j F_ij reg   (default)
+};
+std::string_view to_string(JumpConvention convention);
+
+/// One chemical species.
+struct Species {
+  std::string name;
+  double diffusivity = 0;  ///< kappa [L^2/T]; 0 = immobile (no diffusion bookkeeping)
+};
+
+/// A mass-action reaction of total order 0, 1 or 2.
+struct Reaction {
+  std::string name;
+  std::vector<std::pair<int, int>> reactants;  ///< (species index, stoichiometry >= 1)
+  std::vector<std::pair<int, int>> products;   ///< (species index, stoichiometry >= 1)
+  /// Rate constant in concentration units: order 0 [conc/T], order 1 [1/T],
+  /// order 2 [1/(conc T)], conc = molecules/L^d. For A + A the convention is
+  /// dC_A/dt = -k C_A^2 (see rate_conversion.hpp).
+  double rate = 0;
+  std::vector<ParticleKind> kinds;    ///< particle kinds where it may fire; empty = fluid only
+  std::vector<std::uint32_t> voxels;  ///< optional restriction to particle indices; empty = all
+};
+
+/// Dirichlet reservoir: wall particles hold round(C V_i) molecules of
+/// `species`; jumps into them are absorbed, jumps out leave the count unchanged.
+/// A species with at least one reservoir treats EVERY wall particle as a
+/// reservoir: the one whose `voxels` lists it, else the one with empty `voxels`
+/// (all walls), else C = 0 (absorbing). Species without a reservoir see the
+/// walls as no-flux.
+struct WallReservoir {
+  int species = 0;
+  double concentration = 0;           ///< C [molecules/L^d]
+  std::vector<std::uint32_t> voxels;  ///< optional: only these wall particles; empty = all walls
+};
+
+/// Neumann source: a constant inward flux through the walls, realised as a
+/// zeroth-order source in the first layer of fluid particles next to a wall.
+struct NeumannSource {
+  int species = 0;
+  double flux = 0;  ///< molecules / (L^(d-1) T), >= 0
+};
+
+/// The complete RDME model.
+struct Model {
+  std::vector<Species> species;
+  std::vector<Reaction> reactions;
+  Box box;                       ///< domain; its dimension must match the particles
+  double smoothing_length = 0;   ///< Lucy kernel support radius h [L]; edges join r < h
+  double regularization = 0.01;  ///< eps in r^2 / (r^2 + eps h^2), >= 0
+  JumpConvention convention = JumpConvention::kVolume;
+  std::vector<WallReservoir> reservoirs;
+  std::vector<NeumannSource> neumann;
+
+  /// Checks every field; throws InvalidArgument listing all problems, each with
+  /// the field, the value and the allowed range.
+  void validate() const;
+  /// Index of the species called `name`; throws InvalidArgument listing the known names.
+  [[nodiscard]] int species_index(std::string_view name) const;
+  /// 64-bit fingerprint of every field (used to refuse restoring a snapshot
+  /// into a solver built with another model).
+  [[nodiscard]] std::uint64_t fingerprint() const;
+};
+
+}  // namespace sadr::ssa

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: MIT
+/// \file rdme_state.hpp
+/// The state both solvers share: model, diffusion graph, compiled reactions,
+/// copy numbers, reservoirs, and the per-voxel rate / event-firing kernels.
+/// The solvers (NsmSolver, DirectSolver) add only time and event selection.
+///
+/// Copy numbers are stored species-major: X_si at counts[s * N + i].
+/// Boundary semantics per species s and voxel i:
+///  - s has a WallReservoir and i is a wall particle: X_si is held at
+///    round(C V_i); it emits into non-wall neighbours, jumps in are absorbed.
+///  - s has a reservoir, i is not a wall: jumps go to all neighbours
+///    (into a wall = absorbed).
+///  - s has no reservoir: walls are no-flux for s: no jumps into or out of
+///    wall particles.
+#pragma once
+
+#include <cassert>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "sadr/common/particle_state.hpp"
+#include "sadr/ssa/diffusion_graph.hpp"
+#include "sadr/ssa/model.hpp"
+#include "sadr/ssa/reaction_table.hpp"
+
+namespace sadr::ssa {
+
+inline constexpr std::uint32_t kNoVoxel = std::numeric_limits<std::uint32_t>::max();
+
+class RdmeState {
+ public:
+  /// Validates the model (throws InvalidArgument).
+  explicit RdmeState(Model model);
+
+  [[nodiscard]] const Model& model() const { return model_; }
+  [[nodiscard]] bool has_graph() const { return !graph_.row_start.empty(); }
+  [[nodiscard]] std::size_t voxel_count() const { return graph_.size(); }
+  [[nodiscard]] int species_count() const { return static_cast<int>(model_.species.size()); }
+  [[nodiscard]] const DiffusionGraph& graph() const { return graph_; }
+  [[nodiscard]] const ReactionTable& reactions() const { return table_; }
+  /// The particle arrays the current graph was built from.
+  [[nodiscard]] const ParticleState& graph_inputs() const { return inputs_; }
+
+  /// Rebuilds graph and reaction constants from `particles` unless positions,
+  /// densities, masses and kinds equal the current ones. The first call sets
+  /// N and zero counts; later calls must keep N. A rebuild re-imposes reservoir counts.
+  /// @return true if the graph was rebuilt.
+  bool update_graph(const ParticleState& particles);
+
+  /// Sets X_s for all voxels (then re-imposes reservoirs); validates.
+  void set_counts(int species, std::span<const std::int64_t> counts);
+  [[nodiscard]] std::span<const std::int64_t> counts(int species) const;
+  /// All counts, species-major.
+  [[nodiscard]] const std::vector<std::int64_t>& all_counts() const { return counts_; }
+  /// Replaces all counts (species-major, as in a snapshot) without re-imposing anything.
+  void restore_counts(std::vector<std::int64_t> counts);
+  /// Sets the reservoir counts of wall voxels; returns true if any changed.
+  bool apply_reservoirs();
+
+  /// Total reaction propensity of voxel i [1/T].
+  [[nodiscard]] double reaction_rate(std::uint32_t i) const {
+    if (!voxels_[i].active) return 0.0;
+    double a = 0;
+    for (std::size_t r = 0; r < table_.reaction_count(); ++r) {
+      a += table_.propensity(r, i, counts_.data(), n_);
+    }
+    return a;
+  }
+  /// Out-weight sum [1/L^2] that species s uses in voxel i (boundary semantics above).
+  [[nodiscard]] double jump_weight_sum(int s, std::uint32_t i) const {
+    const VoxelRecord& v = voxels_[i];
+    if (!has_walls_) return v.sum_all;
+    if (v.is_wall) return reservoir_[s] ? graph_.sum_nowall[i] : 0.0;
+    return reservoir_[s] ? v.sum_all : graph_.sum_nowall[i];
+  }
+  /// Total diffusion propensity of voxel i [1/T].
+  [[nodiscard]] double diffusion_rate(std::uint32_t i) const {
+    double a = 0;
+    for (int s : diffusing_) {
+      a += kappa_[s] * static_cast<double>(counts_[s * n_ + i]) * jump_weight_sum(s, i);
+    }
+    return a;
+  }
+  [[nodiscard]] double total_rate(std::uint32_t i) const {
+    return reaction_rate(i) + diffusion_rate(i);
+  }
+
+  /// Fires the event of voxel i selected by u in [0, total_rate(i)) (one
+  /// uniform draw scaled by the total): reactions first, then diffusion by
+  /// species and neighbour, by linear search over the cumulative propensities.
+  /// @return the other voxel whose counts changed (a jump target), or kNoVoxel.
+  std::uint32_t fire(std::uint32_t i, double u);
+
+  /// Species with kappa > 0 (the only ones with diffusion bookkeeping).
+  [[nodiscard]] const std::vector<int>& diffusing_species() const { return diffusing_; }
+  /// Whether species s is held fixed in voxel i (reservoir wall).
+  [[nodiscard]] bool fixed(int s, std::uint32_t i) const {
+    return reservoir_[s] && graph_.is_wall[i];
+  }
+  /// Reservoir count of species s in wall voxel i (requires fixed(s, i)).
+  [[nodiscard]] std::int64_t reservoir_count(int s, std::uint32_t i) const;
+  /// Applies reaction r in voxel i (counts never go negative).
+  void apply_reaction(std::size_t r, std::uint32_t i);
+  /// Moves one molecule of s from i to j; returns j if X_sj changed, else kNoVoxel.
+  std::uint32_t apply_jump(int s, std::uint32_t i, std::uint32_t j);
+  /// End of the edge range species s uses in row i (see jump_weight_sum()).
+  [[nodiscard]] std::uint32_t edge_end(int s, std::uint32_t i) const {
+    const VoxelRecord& v = voxels_[i];
+    if (!has_walls_) return v.end;
+    if (v.is_wall || !reservoir_[s]) return v.split;
+    return v.end;
+  }
+
+  /// Hints the memory system that voxel i fires next: prefetches its record,
+  /// its out-edges and its counts (the event loop calls this for the new heap
+  /// top while it still updates the previous event's jump target).
+  void prefetch(std::uint32_t i) const {
+    const VoxelRecord& v = voxels_[i];  // a demand load of the record
+    if (v.begin < v.end) {
+      __builtin_prefetch(graph_.edges.data() + v.begin);      // first and last line
+      __builtin_prefetch(graph_.edges.data() + (v.end - 1));  // of the edge row
+    }
+    for (int s : diffusing_) __builtin_prefetch(counts_.data() + s * n_ + i);
+  }
+
+  /// Solver scratch: the cached total rate a_i of voxel i [1/T] (NsmSolver keeps it
+  /// here, in the same cache line as the voxel's graph data).
+  [[nodiscard]] double& cached_rate(std::uint32_t i) { return voxels_[i].rate; }
+  [[nodiscard]] double cached_rate(std::uint32_t i) const { return voxels_[i].rate; }
+
+ private:
+  /// Everything the event loop reads about a voxel, in one 32-byte record
+  /// (one cache line holds two voxels): measured 3x faster than separate
+  /// arrays on the 32^3 lattice benchmark (docs/ssa-core.md).
+  struct alignas(32) VoxelRecord {
+    double rate = 0;          ///< solver scratch (cached a_i) [1/T]
+    double sum_all = 0;       ///< sum_j D_ij [1/L^2]
+    std::uint32_t begin = 0;  ///< first out-edge
+    std::uint32_t split = 0;  ///< first out-edge to a wall particle
+    std::uint32_t end = 0;    ///< one past the last out-edge
+    std::uint8_t is_wall = 0;
+    std::uint8_t active = 0;  ///< some reaction can fire here
+  };
+  static_assert(sizeof(VoxelRecord) == 32);
+
+  void assign_reservoir_concentrations();
+
+  Model model_;
+  DiffusionGraph graph_;
+  ReactionTable table_;
+  std::vector<VoxelRecord> voxels_;
+  ParticleState inputs_;
+  std::vector<std::int64_t> counts_;
+  std::vector<double> kappa_;
+  std::vector<int> diffusing_;
+  std::vector<std::uint8_t> reservoir_;  ///< per species: has a WallReservoir
+  std::vector<double> reservoir_conc_;   ///< per (species, voxel), species-major, walls only
+  std::size_t n_ = 0;
+  bool has_walls_ = false;
+};
+
+}  // namespace sadr::ssa

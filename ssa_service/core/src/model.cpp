@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/ssa/model.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <set>
+#include <string>
+
+#include "sadr/common/status.hpp"
+
+namespace sadr::ssa {
+
+std::string_view to_string(JumpConvention convention) {
+  switch (convention) {
+    case JumpConvention::kSymmetric:
+      return "symmetric";
+    case JumpConvention::kVolume:
+      return "volume";
+  }
+  return "unknown";
+}
+
+namespace {
+
+bool finite_nonneg(double v) {
+  return std::isfinite(v) && v >= 0;
+}
+
+void check_species_ref(std::vector<std::string>& issues, const std::string& field, int s,
+                       std::size_t n_species) {
+  if (s < 0 || static_cast<std::size_t>(s) >= n_species) {
+    issues.push_back(field + " = " + std::to_string(s) + " (allowed: 0.." +
+                     std::to_string(static_cast<long>(n_species) - 1) + ")");
+  }
+}
+
+}  // namespace
+
+void Model::validate() const {
+  std::vector<std::string> issues;
+  const std::size_t ns = species.size();
+  if (ns == 0) issues.emplace_back("species: empty (at least one species is required)");
+  std::set<std::string> names;
+  for (std::size_t s = 0; s < ns; ++s) {
+    const std::string f = "species[" + std::to_string(s) + "]";
+    if (species[s].name.empty()) issues.push_back(f + ".name is empty");
+    if (!names.insert(species[s].name).second) {
+      issues.push_back(f + ".name = '" + species[s].name + "' is a duplicate");
+    }
+    if (!finite_nonneg(species[s].diffusivity)) {
+      issues.push_back(f + ".diffusivity = " + format_value(species[s].diffusivity) +
+                       " (allowed: finite and >= 0)");
+    }
+  }
+  for (std::size_t r = 0; r < reactions.size(); ++r) {
+    const Reaction& rx = reactions[r];
+    const std::string f = "reactions[" + std::to_string(r) + "] '" + rx.name + "'";
+    if (!finite_nonneg(rx.rate)) {
+      issues.push_back(f + ".rate = " + format_value(rx.rate) + " (allowed: finite and >= 0)");
+    }
+    int order = 0;
+    for (std::size_t k = 0; k < rx.reactants.size(); ++k) {
+      const std::string fk = f + ".reactants[" + std::to_string(k) + "]";
+      check_species_ref(issues, fk + ".species", rx.reactants[k].first, ns);
+      if (rx.reactants[k].second < 1) {
+        issues.push_back(fk + ".stoichiometry = " + std::to_string(rx.reactants[k].second) +
+                         " (allowed: >= 1)");
+      }
+      order += rx.reactants[k].second;
+      for (std::size_t l = 0; l < k; ++l) {
+        if (rx.reactants[l].first == rx.reactants[k].first) {
+          issues.push_back(fk + ": species " + std::to_string(rx.reactants[k].first) +
+                           " listed twice (give A + A as one entry with stoichiometry 2)");
+        }
+      }
+    }
+    if (order > 2) {
+      issues.push_back(f + ": total order = " + std::to_string(order) + " (allowed: 0, 1, 2)");
+    }
+    for (std::size_t k = 0; k < rx.products.size(); ++k) {
+      const std::string fk = f + ".products[" + std::to_string(k) + "]";
+      check_species_ref(issues, fk + ".species", rx.products[k].first, ns);
+      if (rx.products[k].second < 1) {
+        issues.push_back(fk + ".stoichiometry = " + std::to_string(rx.products[k].second) +
+                         " (allowed: >= 1)");
+      }
+    }
+  }
+  try {
+    box.validate();
+  } catch (const InvalidArgument& e) {
+    issues.emplace_back(e.what());
+  }
+  if (!(std::isfinite(smoothing_length) && smoothing_length > 0)) {
+    issues.push_back("smoothing_length = " + format_value(smoothing_length) +
+                     " (allowed: finite and > 0)");
+  } else if (box.dimension >= 1 && box.dimension <= 3) {
+    for (int a = 0; a < box.dimension; ++a) {
+      if (box.periodic[a] && !(2.0 * smoothing_length < box.length(a))) {
+        issues.push_back("smoothing_length = " + format_value(smoothing_length) +
+                         " must be < half the periodic box length " + format_value(box.length(a)) +
+                         " on axis " + std::to_string(a));
+      }
+    }
+  }
+  if (!finite_nonneg(regularization)) {
+    issues.push_back("regularization = " + format_value(regularization) +
+                     " (allowed: finite and >= 0)");
+  }
+  for (std::size_t k = 0; k < reservoirs.size(); ++k) {
+    const std::string f = "reservoirs[" + std::to_string(k) + "]";
+    check_species_ref(issues, f + ".species", reservoirs[k].species, ns);
+    if (!finite_nonneg(reservoirs[k].concentration)) {
+      issues.push_back(f + ".concentration = " + format_value(reservoirs[k].concentration) +
+                       " (allowed: finite and >= 0)");
+    }
+    for (std::size_t l = 0; l < k; ++l) {
+      if (reservoirs[l].species == reservoirs[k].species && reservoirs[l].voxels.empty() &&
+          reservoirs[k].voxels.empty()) {
+        issues.push_back(f + ".species = " + std::to_string(reservoirs[k].species) +
+                         " already has an all-walls reservoir (give 'voxels' to split walls)");
+      }
+    }
+  }
+  for (std::size_t k = 0; k < neumann.size(); ++k) {
+    const std::string f = "neumann[" + std::to_string(k) + "]";
+    check_species_ref(issues, f + ".species", neumann[k].species, ns);
+    if (!finite_nonneg(neumann[k].flux)) {
+      issues.push_back(f + ".flux = " + format_value(neumann[k].flux) +
+                       " (allowed: finite and >= 0)");
+    }
+  }
+  if (issues.empty()) return;
+  std::string msg = "invalid ssa model: ";
+  for (std::size_t k = 0; k < issues.size(); ++k) msg += (k ? "; " : "") + issues[k];
+  throw InvalidArgument(msg, {{"issues", std::to_string(issues.size())}});
+}
+
+int Model::species_index(std::string_view name) const {
+  for (std::size_t s = 0; s < species.size(); ++s) {
+    if (species[s].name == name) return static_cast<int>(s);
+  }
+  std::string known;
+  for (std::size_t s = 0; s < species.size(); ++s) known += (s ? ", " : "") + species[s].name;
+  throw InvalidArgument("unknown species name '" + std::string(name) + "' (known: " + known + ")",
+                        {{"field", "species"}, {"value", std::string(name)}});
+}
+
+namespace {
+struct Fnv {
+  std::uint64_t h = 1469598103934665603ULL;
+  void bytes(const void* p, std::size_t n) {
+    const auto* c = static_cast<const unsigned char*>(p);
+    for (std::size_t k = 0; k < n; ++k) h = (h ^ c[k]) * 1099511628211ULL;
+  }
+  template <typename T>
+  void pod(const T& v) {
+    bytes(&v, sizeof v);
+  }
+  void str(const std::string& s) {
+    pod(s.size());
+    bytes(s.data(), s.size());
+  }
+};
+}  // namespace
+
+std::uint64_t Model::fingerprint() const {
+  Fnv f;
+  f.pod(species.size());
+  for (const auto& s : species) {
+    f.str(s.name);
+    f.pod(s.diffusivity);
+  }
+  f.pod(reactions.size());
+  for (const auto& r : reactions) {
+    f.str(r.name);
+    for (const auto& [s, n] : r.reactants) f.pod(s), f.pod(n);
+    f.pod(-1);
+    for (const auto& [s, n] : r.products) f.pod(s), f.pod(n);
+    f.pod(-1);
+    f.pod(r.rate);
+    for (auto k : r.kinds) f.pod(k);
+    f.pod(-1);
+    for (auto v : r.voxels) f.pod(v);
+    f.pod(-1);
+  }
+  f.pod(box.dimension);
+  f.pod(box.lo);
+  f.pod(box.hi);
+  f.pod(box.periodic);
+  f.pod(smoothing_length);
+  f.pod(regularization);
+  f.pod(convention);
+  for (const auto& w : reservoirs) {
+    f.pod(w.species), f.pod(w.concentration);
+    for (auto v : w.voxels) f.pod(v);
+    f.pod(-1);
+  }
+  f.pod(-1);
+  for (const auto& n : neumann) f.pod(n.species), f.pod(n.flux);
+  return f.h;
+}
+
+}  // namespace sadr::ssa
