@@ -2,6 +2,7 @@
 #include "sadr/wire/rpc.hpp"
 
 #include <unistd.h>
+#include <algorithm>
 #include <cerrno>
 #include <set>
 #include <vector>
@@ -254,12 +255,13 @@ void RpcClient::call_raw(const std::string& header, const std::string& body,
                       std::to_string(timeout_.count()) + " ms (is it running?)");
     }
     try {
-      zmq::poll(items, 1, left);
+      zmq::poll(items, 1, std::min(left, std::chrono::milliseconds(200)));
     } catch (const zmq::error_t& e) {
       if (e.num() == EINTR) continue;
       throw;
     }
     if (items[0].revents & ZMQ_POLLIN) break;
+    if (liveness_) liveness_();
   }
   std::vector<zmq::message_t> frames;
   (void)zmq::recv_multipart(s, std::back_inserter(frames));

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -97,6 +98,9 @@ class RpcClient {
                 std::string& reply_body);
   [[nodiscard]] const std::string& endpoint() const { return endpoint_; }
   void set_timeout(std::chrono::milliseconds timeout) { timeout_ = timeout; }
+  /// Called about every 200 ms while waiting for a reply; it may throw (e.g.
+  /// when the service's process has exited) to abort the wait early.
+  void set_liveness_check(std::function<void()> check) { liveness_ = std::move(check); }
 
  private:
   struct Impl;
@@ -105,6 +109,7 @@ class RpcClient {
   std::string peer_name_;
   std::chrono::milliseconds timeout_;
   std::uint64_t sequence_ = 0;
+  std::function<void()> liveness_;
 };
 
 }  // namespace sadr::wire
