@@ -104,7 +104,7 @@ double annihilation(int np, double dt, const std::map<long, double>& ref) {
   using T = WallCondition::Type;
   model.species = {{"A", 0.1, true, {}, {{T::kDirichlet, c0}, {T::kDirichlet, 0.0}}},
                    {"B", 0.1, true, {}, {{T::kDirichlet, 0.0}, {T::kDirichlet, c0}}}};
-  model.reactions = {{"annihilation", {{0, 1}, {1, 1}}, {}, 0.1}};
+  model.reactions = {{"annihilation", {{0, 1}, {1, 1}}, {}, 0.1, {}, {}}};
   StaticBackend b;
   b.initialize(model, p, {});
   b.advance(0, 1.0);

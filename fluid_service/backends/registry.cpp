@@ -3,6 +3,7 @@
 
 #include "sadr/fluid/builtin_backends.hpp"
 #include "sdpd/sdpd_backend.hpp"
+#include "sadr/fluid/tdpd_backend.hpp"
 #include "static/static_backend.hpp"
 
 namespace sadr::fluid {
@@ -10,6 +11,7 @@ namespace sadr::fluid {
 void register_builtin_backends(BackendRegistry& registry) {
   registry.add("sdpd", [] { return std::make_unique<SdpdBackend>(); });
   registry.add("static", [] { return std::make_unique<StaticBackend>(); });
+  register_tdpd_backend(registry);  // "tdpd" (backends/tdpd)
 }
 
 }  // namespace sadr::fluid

@@ -36,7 +36,7 @@ FluidModel small_model(ParticleState& p) {
 
 TEST(Registry, BuiltinNamesAndCreation) {
   const auto r = builtin();
-  EXPECT_EQ(r.names(), (std::vector<std::string>{"sdpd", "static"}));
+  EXPECT_EQ(r.names(), (std::vector<std::string>{"sdpd", "static", "tdpd"}));
   EXPECT_EQ(r.create("sdpd")->name(), "sdpd");
   EXPECT_EQ(r.create("static")->name(), "static");
   EXPECT_TRUE(r.create("sdpd")->capabilities().moves_particles);
@@ -46,12 +46,12 @@ TEST(Registry, BuiltinNamesAndCreation) {
 TEST(Registry, UnknownNameListsKnownOnes) {
   const auto r = builtin();
   try {
-    (void)r.create("tdpd");
+    (void)r.create("lbm");
     FAIL() << "expected InvalidArgument";
   } catch (const InvalidArgument& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find("tdpd"), std::string::npos);
-    EXPECT_NE(msg.find("sdpd, static"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("lbm"), std::string::npos);
+    EXPECT_NE(msg.find("sdpd, static, tdpd"), std::string::npos) << msg;
   }
 }
 
@@ -67,7 +67,7 @@ TEST(ModelValidation, ReportsEveryProblemWithFieldAndValue) {
   m.shear_viscosity = -2;
   m.kernel = "gauss";
   m.species.push_back({"A", -0.5, true, {}, {}});
-  m.reactions.push_back({"r", {{3, 1}}, {}, 1.0});
+  m.reactions.push_back({"r", {{3, 1}}, {}, 1.0, {}, {}});
   try {
     m.validate();
     FAIL();
@@ -148,6 +148,31 @@ TEST(Stability, BlowUpIsDiagnosed) {
     for (const auto& [k, v] : e.details()) has_step = has_step || k == "step";
     EXPECT_TRUE(has_step);
   }
+}
+
+}  // namespace
+}  // namespace sadr::fluid
+
+namespace sadr::fluid {
+namespace {
+
+// c_0 is optional in the model (static scenes have no equation of state) but
+// sdpd refuses to start without it, naming the field.
+TEST(SoundSpeed, OptionalForStaticRequiredForSdpd) {
+  ParticleState p;
+  FluidModel m = small_model(p);
+  m.sound_speed = 0.0;
+  EXPECT_NO_THROW(m.validate());
+  EXPECT_NO_THROW(builtin().create("static")->initialize(m, p, {}));
+  try {
+    builtin().create("sdpd")->initialize(m, p, {});
+    FAIL() << "sdpd must refuse c_0 = 0";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("sdpd: sound_speed = 0 (must be > 0"), std::string::npos)
+        << e.what();
+  }
+  m.sound_speed = -1.0;
+  EXPECT_THROW(m.validate(), InvalidArgument);
 }
 
 }  // namespace

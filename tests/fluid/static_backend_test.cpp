@@ -175,7 +175,7 @@ TEST(StaticBackend, AplusBReactionConservesDifference) {
   m.smoothing_length = 2.0;
   m.species.push_back({"A", 0.0, true, {}, {}});
   m.species.push_back({"B", 0.0, true, {}, {}});
-  m.reactions.push_back({"ann", {{0, 1}, {1, 1}}, {}, 0.5});
+  m.reactions.push_back({"ann", {{0, 1}, {1, 1}}, {}, 0.5, {}, {}});
   m.max_time_step = 0.01;
   StaticBackend b;
   b.initialize(m, p, {std::vector<double>(p.size(), 2.0), std::vector<double>(p.size(), 1.0)});
@@ -185,6 +185,100 @@ TEST(StaticBackend, AplusBReactionConservesDifference) {
   const double bex = 1.0 / (2.0 * std::exp(0.5) - 1.0);
   EXPECT_NEAR(b.concentrations(1)[0], bex, 1e-5);  // Heun error O(dt^2) ~ 1e-6
   EXPECT_NEAR(b.concentrations(0)[0] - b.concentrations(1)[0], 1.0, 1e-12);
+}
+
+// --- reaction sites (ReactionSpec::kinds / ::particles) and WallCondition::kFree -------------
+
+// 1D chain of `n` fluid particles with `layers` wall layers at each end, one species.
+FluidModel chain_model(ParticleState& p, int n, int layers, double kappa, WallCondition wall) {
+  test::LatticeSpec ls;
+  ls.dimension = 1;
+  ls.n = {n, 1, 1};
+  ls.periodic = {false, true, true};
+  ls.wall_layers = layers;
+  FluidModel m;
+  p = test::make_lattice(ls, m.box);
+  m.smoothing_length = 2.0;
+  m.species.push_back({"A", kappa, true, wall, {}});
+  return m;
+}
+
+TEST(ReactionSites, ProductionRestrictedToParticleListChangesOnlyThose) {
+  ParticleState p;
+  FluidModel m = chain_model(p, 12, 2, 0.0, {});
+  m.reactions.push_back({"make", {}, {{0, 1}}, 2.0, {}, {4, 9}});
+  StaticBackend b;
+  b.initialize(m, p, {std::vector<double>(p.size(), 0.0)});
+  b.advance(0, 0.5);
+  const auto& c = b.concentrations(0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_DOUBLE_EQ(c[i], (i == 4 || i == 9) ? 1.0 : 0.0) << "particle " << i;
+  }
+}
+
+TEST(ReactionSites, DefaultReactionsFireOnFluidOnlyKindsSelectWalls) {
+  for (const bool on_walls : {false, true}) {
+    ParticleState p;
+    FluidModel m = chain_model(p, 10, 3, 0.0, {});
+    ReactionSpec r{"make", {}, {{0, 1}}, 1.0, {}, {}};
+    if (on_walls) r.kinds = {ParticleKind::kWall};
+    m.reactions.push_back(r);
+    StaticBackend b;
+    b.initialize(m, p, {std::vector<double>(p.size(), 0.0)});
+    b.advance(0, 1.0);
+    const auto& c = b.concentrations(0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const bool wall = p.kind(i) == ParticleKind::kWall;
+      EXPECT_DOUBLE_EQ(c[i], wall == on_walls ? 1.0 : 0.0) << "particle " << i;
+    }
+  }
+}
+
+TEST(ReactionSites, ParticleIndexOutOfRangeIsRejected) {
+  ParticleState p;
+  FluidModel m = chain_model(p, 8, 2, 0.1, {});
+  m.reactions.push_back({"make", {}, {{0, 1}}, 1.0, {}, {3, 99}});
+  StaticBackend b;
+  try {
+    b.initialize(m, p, {});
+    FAIL() << "expected InvalidArgument";
+  } catch (const InvalidArgument& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("reactions[0].particles[1] = 99"), std::string::npos) << msg;
+  }
+}
+
+TEST(FreeWall, StaticChainConservesAndEquilibratesThroughTheWall) {
+  // Species starts in the left wall layers only. kNoFlux keeps it there; kFree lets it diffuse
+  // through the (immobile) wall particles into the fluid until uniform, conserving the total.
+  for (const auto type : {WallCondition::Type::kNoFlux, WallCondition::Type::kFree}) {
+    ParticleState p;
+    FluidModel m = chain_model(p, 16, 3, 1.0, {type, 0.0});
+    std::vector<double> c0(p.size(), 0.0);
+    double total0 = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.positions[3 * i] < 0) c0[i] = 1.0;
+      total0 += c0[i];
+    }
+    StaticBackend b;
+    b.initialize(m, p, {c0});
+    b.advance(0, 3000.0);
+    const auto& c = b.concentrations(0);
+    double total = 0, fluid_max = 0, dev = 0;
+    const double mean = total0 / static_cast<double>(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      total += c[i];
+      if (p.kind(i) == ParticleKind::kFluid) fluid_max = std::max(fluid_max, std::fabs(c[i]));
+      dev = std::max(dev, std::fabs(c[i] - mean));
+    }
+    EXPECT_NEAR(total, total0, 1e-11);
+    if (type == WallCondition::Type::kNoFlux) {
+      EXPECT_EQ(fluid_max, 0.0);
+      EXPECT_EQ(c[0], 1.0);
+    } else {
+      EXPECT_LT(dev, 1e-6 * mean) << "mean " << mean;
+    }
+  }
 }
 
 }  // namespace

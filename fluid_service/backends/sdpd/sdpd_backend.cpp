@@ -67,6 +67,16 @@ void SdpdBackend::require_initialized(const char* what) const {
 void SdpdBackend::initialize(const FluidModel& model, const ParticleState& initial,
                              const std::vector<std::vector<double>>& concentrations) {
   check_initial(model, initial, concentrations);
+  if (!model.backend_parameters.empty()) {
+    throw InvalidArgument("sdpd: unknown parameter '" + model.backend_parameters.begin()->first +
+                          "' (this backend takes none beyond density_diffusion, diffusion_eps, "
+                          "density_band, neighbor_skin)");
+  }
+  if (!(model.sound_speed > 0)) {
+    throw InvalidArgument("sdpd: sound_speed = " + format_value(model.sound_speed) +
+                          " (must be > 0: the Tait equation of state needs c_0, at least 10x the "
+                          "largest flow speed)");
+  }
   model_ = model;
   const int dim = model.box.dimension;
   kernel_ = Kernel(parse_kernel(model.kernel), dim, model.smoothing_length);
@@ -365,9 +375,11 @@ std::size_t SdpdBackend::memory_bytes() const {
     for (const auto& c : r.dc) b += vb(c);
     return b;
   };
+  std::size_t noise_bytes = 0;
+  for (const auto& b : scratch_) noise_bytes += b.bytes();
   return yb(y_) + yb(ytmp_) + rb(r0_) + rb(r1_) + vb(nlist_.offsets) + vb(nlist_.indices) +
          vb(list_ref_x_) + vb(wall_) + vb(wall_region_) + vb(wall_depth_) + vb(mass_) + vb(kinds_) +
-         vb(ids_) + vb(pd2_) + vb(inv_nd_);
+         vb(ids_) + vb(pd2_) + vb(inv_nd_) + vb(vol_) + vb(sqrt_inv_nd_) + noise_bytes;
 }
 
 void SdpdBackend::read_state(ParticleState& out) const {

@@ -11,12 +11,14 @@
 /// and hold their species values (Dirichlet) or are excluded (no-flux / Neumann ghost).
 #pragma once
 
+#include <array>
 #include <memory>
 
 #include "sadr/fluid/fluid_backend.hpp"
 #include "sadr/fluid/kernel.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
 #include "sadr/fluid/pair_terms.hpp"
+#include "sadr/fluid/sdpd_pair_block.hpp"
 #include "sadr/fluid/species_transport.hpp"
 #include "sadr/fluid/stability.hpp"
 #include "sadr/fluid/tait_eos.hpp"
@@ -86,6 +88,22 @@ class SdpdBackend final : public FluidBackend {
   Y y_, ytmp_;
   Rates r0_, r1_;
   std::vector<double> pd2_, inv_nd_;  ///< P_i/d_i^2 and 1/d_i at the state being evaluated
+  std::vector<double> vol_;           ///< m_i/rho_i at the state being evaluated
+  std::vector<double> sqrt_inv_nd_;   ///< sqrt(1/d_i) (thermal noise only)
+  /// Per-thread scratch of the pair loop: one particle's pairs within h as a SIMD block
+  /// (sdpd_pair_block.hpp) and the four noise numbers per pair (pair_noise_batch.hpp).
+  struct PairScratch {
+    SdpdPairBlock block;
+    std::array<std::vector<float>, 4> z;
+    void reserve(std::size_t n) {
+      block.reserve(n);
+      if (z[0].size() < n) {
+        for (auto& v : z) v.resize(n);
+      }
+    }
+    [[nodiscard]] std::size_t bytes() const { return block.bytes() + 4 * z[0].capacity() * 4; }
+  };
+  std::vector<PairScratch> scratch_;
   double time_ = 0;
 };
 

@@ -4,7 +4,9 @@
 /// SdpdMomentumTerm, ContinuityTerm, PairNoise and DiffusionTerm (pair_terms.hpp).
 #include <algorithm>
 #include <cmath>
+#include <span>
 
+#include "sadr/fluid/pair_noise_batch.hpp"
 #include "sadr/fluid/parallel.hpp"
 #include "sdpd_backend.hpp"
 
@@ -57,6 +59,7 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
     g.r2 = r2;
     g.r = std::sqrt(r2);
     g.f = kernel_.f(g.r);
+    g.inv_r2 = 1.0 / r2;
     return true;
   };
 
@@ -76,12 +79,16 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
   }
   pd2_.resize(n);
   inv_nd_.resize(n);
+  vol_.resize(n);
+  if (noise_on) sqrt_inv_nd_.resize(n);
 #pragma omp parallel for schedule(static) if (ni > kMinParallel)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double nd_inv = mass_[i] / y.rho[i];  // 1/d_i
     inv_nd_[i] = nd_inv;
     pd2_[i] = eos_.pressure(y.rho[i]) * nd_inv * nd_inv;
+    vol_[i] = mass_[i] / y.rho[i];
+    if (noise_on) sqrt_inv_nd_[i] = std::sqrt(nd_inv);
   }
 
   // a = b = c_D eta with c_D = 2(D+2)/(D+3): 5/3 in 3D (LAMMPS, Espanol-Revenga with zeta = 0),
@@ -91,72 +98,178 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
   const SdpdMomentumTerm momentum{c_d * model_.shear_viscosity};
   const ContinuityTerm continuity{model_.density_diffusion * h * model_.sound_speed, 0.01 * h2};
   const DiffusionTerm diffusion{model_.diffusion_eps * h2};
-  const PairNoise noise{model_.seed, model_.noise};
-  const double noise_pref = 4.0 * model_.temperature * c_d * model_.shear_viscosity;
+  scratch_.resize(static_cast<std::size_t>(max_threads()));
+  const double noise_amp = std::sqrt(2.0 * model_.temperature * c_d * model_.shear_viscosity);
   const bool species_on = !species_.transported().empty();
   const auto& bq = model_.boussinesq;
   double max_k_sum = 0, max_visc = 0;
+  SdpdPairParams pair_params;
+  pair_params.inv_h = kernel_.inv_support();
+  pair_params.f_coef = kernel_.f_coef();
+  pair_params.sqrt_f_coef = kernel_.sqrt_f_coef();
+  pair_params.lucy = kernel_.type() == KernelType::kLucy;
+  pair_params.friction = momentum.friction;
+  pair_params.delta_h_c0 = continuity.delta_h_c0;
+  pair_params.eps_h2 = continuity.eps_h2;
+  pair_params.noise_amp = noise_amp;
+  pair_params.noise = noise_on;
 
-#pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(max \
-                                                                           : max_k_sum, max_visc)
-  for (std::int64_t ii = 0; ii < ni; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    const bool wall_i = wall_[i] != 0;
-    std::array<double, D> force{}, fnoise{};
-    double drho = 0, k_sum = 0, f_sum = 0;
-    const double* vi = &y.v[3 * i];
-    PairGeometry<D> g{};
-    for (const std::uint32_t j : nlist_.of(i)) {
-      if (!geometry(i, j, g)) continue;
-      std::array<double, D> v;
-      for (int a = 0; a < D; ++a) v[a] = vi[a] - y.v[3 * j + a];
-      if (!summation) drho += continuity(g, v, mass_[j], y.rho[i], y.rho[j]);
-      if (wall_i) continue;  // walls: density only
-      if (morris_ && wall_region_[j] >= 0) {
-        // Morris et al. 1997 extrapolated wall velocity: v_ij = beta v_i in the viscous term.
-        const auto& reg = model_.wall_regions[static_cast<std::size_t>(wall_region_[j])];
-        double di = 0;
-        for (int a = 0; a < 3; ++a)
-          di += reg.inward_normal[a] * (x[3 * i + a] - reg.surface_point[a]);
-        const double beta = std::min(1.5, 1.0 + wall_depth_[j] / std::max(di, 1e-3 * h));
-        std::array<double, D> vb;
-        for (int a = 0; a < D; ++a) vb[a] = beta * vi[a];
-        const SdpdMomentumTerm pressure_only{0.0};
-        pressure_only(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], v, force);
-        const SdpdMomentumTerm viscous_only{momentum.friction};
-        viscous_only(g, 0.0, 0.0, inv_nd_[i] * inv_nd_[j], vb, force);
-      } else {
-        momentum(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], v, force);
+#pragma omp parallel if (ni > kMinParallel)
+  {
+    // Per-thread scratch: a particle's pairs within h as a SIMD block (sdpd_pair_block.hpp);
+    // the noise numbers of a whole neighbour list are generated at once (pair_noise_batch.hpp).
+    // Per-pair results are summed in neighbour order (thread-count independent).
+    PairScratch& sc = scratch_[static_cast<std::size_t>(thread_index())];
+    SdpdPairBlock& b = sc.block;
+#pragma omp for schedule(static) reduction(max : max_k_sum, max_visc)
+    for (std::int64_t ii = 0; ii < ni; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      const bool wall_i = wall_[i] != 0;
+      std::array<double, D> force{};
+      double drho = 0, k_sum = 0, f_sum = 0;
+      std::size_t npairs = 0;
+      sc.reserve(nlist_.of(i).size());
+      const double* vi = &y.v[3 * i];
+      PairGeometry<D> g{};
+      if (!wall_i && !morris_) {
+        // Fast path (fluid particle, stationary walls): gather, SIMD pair terms, ordered sums.
+        const double* xi = &x[3 * i];
+        std::size_t m = 0;
+        for (const std::uint32_t j : nlist_.of(i)) {
+          double d[D];
+          for (int a = 0; a < D; ++a) d[a] = xi[a] - x[3 * j + a];
+          pbox_.minimum_image_first<D>(d);
+          double r2 = 0;
+          for (int a = 0; a < D; ++a) r2 += d[a] * d[a];
+          if (r2 >= h2) continue;
+          b.j[m] = j;
+          for (int a = 0; a < D; ++a) {
+            b.x[a][m] = d[a];
+            b.v[a][m] = vi[a] - y.v[3 * j + a];
+          }
+          b.r2[m] = r2;
+          b.pd2_j[m] = pd2_[j];
+          b.inv_nd_j[m] = inv_nd_[j];
+          b.m_j[m] = mass_[j];
+          b.vol_j[m] = vol_[j];
+          b.rho_j[m] = y.rho[j];
+          if (noise_on) b.sqrt_inv_nd_j[m] = sqrt_inv_nd_[j];
+          ++m;
+        }
+        sdpd_pair_block<D>(pair_params,
+                           {static_cast<std::uint32_t>(i), pd2_[i], inv_nd_[i], y.rho[i],
+                            noise_on ? sqrt_inv_nd_[i] : 0.0},
+                           m, b);
+        for (std::size_t k = 0; k < m; ++k) {
+          for (int a = 0; a < D; ++a) force[a] += b.force[a][k];
+          f_sum += b.f[k] * b.inv_nd_j[k];
+        }
+        if (!summation) {
+          for (std::size_t k = 0; k < m; ++k) drho += b.drho[k];
+        }
+        if (species_on) {
+          for (std::size_t k = 0; k < m; ++k) {
+            for (int a = 0; a < D; ++a) g.x[a] = b.x[a][k];
+            g.r2 = b.r2[k];
+            g.r = b.r[k];
+            g.f = b.f[k];
+            g.inv_r2 = 1.0 / g.r2;
+            const double kk = diffusion.coefficient(g, b.vol_j[k]);
+            k_sum += kk;
+            double xij[3] = {0.0, 0.0, 0.0};
+            for (int a = 0; a < D; ++a) xij[a] = g.x[a];
+            species_.add_pair(i, b.j[k], kk, xij, y.c, out.dc);
+          }
+        }
+        npairs = noise_on ? m : 0;
       }
-      f_sum += g.f * inv_nd_[j];
+      for (const std::uint32_t j :
+           (!wall_i && !morris_) ? std::span<const std::uint32_t>{} : nlist_.of(i)) {
+        if (!geometry(i, j, g)) continue;
+        std::array<double, D> v;
+        for (int a = 0; a < D; ++a) v[a] = vi[a] - y.v[3 * j + a];
+        if (!summation) drho += continuity.with_volume(g, v, mass_[j], vol_[j], y.rho[i], y.rho[j]);
+        if (wall_i) {  // walls: density only, plus species on WallCondition::kFree walls
+          if (species_on && species_.active_wall(i)) {
+            const double k = diffusion.coefficient(g, vol_[j]);
+            k_sum += k;
+            double xij[3] = {0.0, 0.0, 0.0};
+            for (int a = 0; a < D; ++a) xij[a] = g.x[a];
+            species_.add_pair_wall(i, j, k, xij, y.c, out.dc);
+          }
+          continue;
+        }
+        if (morris_ && wall_region_[j] >= 0) {
+          // Morris et al. 1997 extrapolated wall velocity: v_ij = beta v_i in the viscous term.
+          const auto& reg = model_.wall_regions[static_cast<std::size_t>(wall_region_[j])];
+          double di = 0;
+          for (int a = 0; a < 3; ++a)
+            di += reg.inward_normal[a] * (x[3 * i + a] - reg.surface_point[a]);
+          const double beta = std::min(1.5, 1.0 + wall_depth_[j] / std::max(di, 1e-3 * h));
+          std::array<double, D> vb;
+          for (int a = 0; a < D; ++a) vb[a] = beta * vi[a];
+          const SdpdMomentumTerm pressure_only{0.0};
+          pressure_only(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], v, force);
+          const SdpdMomentumTerm viscous_only{momentum.friction};
+          viscous_only(g, 0.0, 0.0, inv_nd_[i] * inv_nd_[j], vb, force);
+        } else {
+          momentum(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], v, force);
+        }
+        f_sum += g.f * inv_nd_[j];
+        if (noise_on) {
+          // force_i = sign sqrt(amp2/2) (z0, z1, z2) + sqrt(amp2/2)/r x_ij z3 (PairNoise::add)
+          // sqrt(amp2/2) = sqrt(2 k_B T c_D eta) sqrt(F_ij) sqrt(1/d_i) sqrt(1/d_j), the last
+          // product formed symmetrically so both sides of the pair get the same value.
+          const double amp =
+              (noise_amp * kernel_.sqrt_f(g.r)) * (sqrt_inv_nd_[i] * sqrt_inv_nd_[j]);
+          b.j[npairs] = j;
+          b.amp[npairs] = i < j ? amp : -amp;
+          b.amp_r[npairs] = amp / g.r;
+          for (int a = 0; a < D; ++a) b.x[a][npairs] = g.x[a];
+          ++npairs;
+        }
+        if (species_on) {
+          const double k = diffusion.coefficient(g, vol_[j]);
+          k_sum += k;
+          double xij[3] = {0.0, 0.0, 0.0};
+          for (int a = 0; a < D; ++a) xij[a] = g.x[a];
+          species_.add_pair(i, j, k, xij, y.c, out.dc);
+        }
+      }
+      out.drho[i] = drho;
+      if (wall_i) {
+        if (species_on && species_.active_wall(i)) {
+          max_k_sum = std::max(max_k_sum, k_sum);
+          species_.add_reactions(i, y.c, out.dc);
+        }
+        continue;
+      }
+      max_k_sum = std::max(max_k_sum, k_sum);
+      max_visc = std::max(max_visc, f_sum / y.rho[i]);
+      const double inv_m = 1.0 / mass_[i];
+      double body[3] = {model_.gravity[0], model_.gravity[1], model_.gravity[2]};
+      if (bq.species >= 0) {
+        const double bqa = bq.coefficient * (y.c[bq.species][i] - bq.reference);
+        for (int a = 0; a < 3; ++a) body[a] += bqa * bq.direction[a];
+      }
+      for (int a = 0; a < D; ++a) out.acc[3 * i + a] = force[a] * inv_m + body[a];
       if (noise_on) {
-        noise.add(g, noise_step, static_cast<std::uint32_t>(i), j,
-                  noise_pref * g.f * inv_nd_[i] * inv_nd_[j], fnoise);
+        pair_noise_numbers(model_.seed, noise_step, static_cast<std::uint32_t>(i), b.j.data(),
+                           npairs, model_.noise, sc.z[0].data(), sc.z[1].data(), sc.z[2].data(),
+                           sc.z[3].data());
+        std::array<double, D> fnoise{};
+        const float* z3 = sc.z[3].data();
+        for (std::size_t k = 0; k < npairs; ++k) {
+          const double s3 = b.amp_r[k] * static_cast<double>(z3[k]);
+          for (int a = 0; a < D; ++a) {
+            fnoise[a] += b.amp[k] * static_cast<double>(sc.z[a][k]) + s3 * b.x[a][k];
+          }
+        }
+        for (int a = 0; a < D; ++a) out.acc_noise[3 * i + a] = fnoise[a] * inv_m;
       }
-      if (species_on) {
-        const double k = diffusion.coefficient(g, mass_[j] / y.rho[j]);
-        k_sum += k;
-        double xij[3] = {0.0, 0.0, 0.0};
-        for (int a = 0; a < D; ++a) xij[a] = g.x[a];
-        species_.add_pair(i, j, k, xij, y.c, out.dc);
-      }
+      if (species_on) species_.add_reactions(i, y.c, out.dc);
     }
-    out.drho[i] = drho;
-    if (wall_i) continue;
-    max_k_sum = std::max(max_k_sum, k_sum);
-    max_visc = std::max(max_visc, f_sum / y.rho[i]);
-    const double inv_m = 1.0 / mass_[i];
-    double body[3] = {model_.gravity[0], model_.gravity[1], model_.gravity[2]};
-    if (bq.species >= 0) {
-      const double b = bq.coefficient * (y.c[bq.species][i] - bq.reference);
-      for (int a = 0; a < 3; ++a) body[a] += b * bq.direction[a];
-    }
-    for (int a = 0; a < D; ++a) out.acc[3 * i + a] = force[a] * inv_m + body[a];
-    if (noise_on) {
-      for (int a = 0; a < D; ++a) out.acc_noise[3 * i + a] = fnoise[a] * inv_m;
-    }
-    if (species_on) species_.add_reactions(i, y.c, out.dc);
-  }
+  }  // omp parallel
   out.max_k_sum = max_k_sum;
   out.max_visc_sum = 2.0 * c_d * max_visc;  // (a + b)/rho_i sum_j V_j F_ij
 }

@@ -27,6 +27,11 @@ void StaticBackend::require_initialized(const char* what) const {
 void StaticBackend::initialize(const FluidModel& model, const ParticleState& initial,
                                const std::vector<std::vector<double>>& concentrations) {
   model.validate();
+  if (!model.backend_parameters.empty()) {
+    throw InvalidArgument("static: unknown parameter '" + model.backend_parameters.begin()->first +
+                          "' (this backend takes none beyond density_diffusion, diffusion_eps, "
+                          "density_band, neighbor_skin)");
+  }
   initial.validate();
   if (initial.dimension != model.box.dimension) {
     throw InvalidArgument("particle state dimension " + std::to_string(initial.dimension) +
@@ -82,9 +87,10 @@ void StaticBackend::initialize(const FluidModel& model, const ParticleState& ini
         g.r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         g.r = std::sqrt(g.r2);
         g.f = kernel.f(g.r);
+        g.inv_r2 = 1.0 / g.r2;
         k_[e] = diffusion.coefficient(g, state_.volume(j));
         std::copy(d, d + 3, &xij_[3 * e]);
-        if (state_.kind(i) != ParticleKind::kWall) k_sum += k_[e];
+        if (state_.kind(i) != ParticleKind::kWall || species_.active_wall(i)) k_sum += k_[e];
       }
       max_k_sum_ = std::max(max_k_sum_, k_sum);
     }
@@ -104,7 +110,14 @@ void StaticBackend::rates(const std::vector<std::vector<double>>& c,
 #pragma omp parallel for schedule(static) if (ni > kMinParallel)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    if (state_.kind(i) == ParticleKind::kWall) continue;
+    if (state_.kind(i) == ParticleKind::kWall) {
+      if (!species_.active_wall(i)) continue;  // WallCondition::kFree walls / wall reactions
+      for (std::uint32_t e = nlist_.offsets[i]; e < nlist_.offsets[i + 1]; ++e) {
+        species_.add_pair_wall(i, nlist_.indices[e], k_[e], &xij_[3 * e], c, dc);
+      }
+      species_.add_reactions(i, c, dc);
+      continue;
+    }
     for (std::uint32_t e = nlist_.offsets[i]; e < nlist_.offsets[i + 1]; ++e) {
       species_.add_pair(i, nlist_.indices[e], k_[e], &xij_[3 * e], c, dc);
     }

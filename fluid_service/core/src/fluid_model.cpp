@@ -51,7 +51,8 @@ void FluidModel::validate() const {
     p.add_text("kernel", "'" + kernel + "' is unknown (known: lucy, wendland_c2)");
   }
   if (!finite_pos(reference_density)) p.add("reference_density", reference_density, "must be > 0");
-  if (!finite_pos(sound_speed)) p.add("sound_speed", sound_speed, "must be > 0");
+  // 0 = not given: only backends with an equation of state need c_0 (sdpd checks it).
+  if (!finite_nonneg(sound_speed)) p.add("sound_speed", sound_speed, "must be >= 0");
   if (!finite_nonneg(shear_viscosity)) p.add("shear_viscosity", shear_viscosity, "must be >= 0");
   if (!finite_nonneg(temperature)) p.add("temperature", temperature, "k_B T must be >= 0");
   if (temperature > 0 && shear_viscosity <= 0) {

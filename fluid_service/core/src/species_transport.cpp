@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <string>
+
+#include "sadr/common/status.hpp"
 
 namespace sadr::fluid {
 
@@ -17,10 +20,8 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
   normal_.clear();
   for (const auto& w : model.wall_regions) normal_.push_back(w.inward_normal);
   region_ = model.assign_wall_regions(state);
-  reacts_.assign(n, 1);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (state.kind(i) == ParticleKind::kWall) reacts_[i] = 0;
-  }
+  reacts_.assign(n, 0);
+  active_wall_.assign(n, 0);
   roles_.assign(ns, {});
   neumann_grad_.assign(ns, std::vector<double>(nr + 1, 0.0));
   dirichlet_.assign(ns, std::vector<double>(nr + 1, 0.0));
@@ -50,13 +51,50 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
         case WallCondition::Type::kNeumann:
           roles_[s][i] = Role::kNeumann;
           break;
+        case WallCondition::Type::kFree:
+          roles_[s][i] = Role::kFree;
+          if (sp.deterministic) active_wall_[i] = 1;
+          break;
       }
     }
   }
   reactions_.clear();
-  for (const auto& re : model.reactions) {
+  for (std::size_t r = 0; r < model.reactions.size(); ++r) {
+    const auto& re = model.reactions[r];
     CompiledReaction cr;
     cr.rate = re.rate;
+    // Sites: kinds (default fluid only) intersected with the optional particle list.
+    bool kind_ok[4] = {true, false, false, false};
+    if (!re.kinds.empty()) {
+      kind_ok[0] = false;
+      for (const ParticleKind k : re.kinds) {
+        const auto ki = static_cast<std::size_t>(k);
+        if (ki < 4) kind_ok[ki] = true;
+      }
+    }
+    cr.fires.assign(n, 0);
+    auto site = [&](std::size_t i) {
+      const auto ki = static_cast<std::size_t>(state.kind(i));
+      if (ki < 4 && kind_ok[ki]) cr.fires[i] = 1;
+    };
+    if (re.particles.empty()) {
+      for (std::size_t i = 0; i < n; ++i) site(i);
+    } else {
+      for (std::size_t k = 0; k < re.particles.size(); ++k) {
+        const std::uint32_t i = re.particles[k];
+        if (i >= n) {
+          throw InvalidArgument("reactions[" + std::to_string(r) + "].particles[" +
+                                std::to_string(k) + "] = " + std::to_string(i) +
+                                " (must index a particle, [0, " + std::to_string(n) + "))");
+        }
+        site(i);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!cr.fires[i]) continue;
+      reacts_[i] = 1;
+      if (state.kind(i) == ParticleKind::kWall) active_wall_[i] = 1;
+    }
     std::map<int, int> net;
     for (const auto& [s, nu] : re.reactants) {
       double fact = 1;
@@ -96,18 +134,23 @@ void SpeciesTransport::add_reactions(std::size_t i, const std::vector<std::vecto
                                      std::vector<std::vector<double>>& dc) const {
   if (!reacts_[i]) return;
   for (const auto& r : reactions_) {
+    if (!r.fires[i]) continue;
     const double v = velocity(r, i, c);
-    for (const auto& [s, d] : r.delta) dc[s][i] += d * v;
+    for (const auto& [s, d] : r.delta) {
+      if (roles_[s][i] != Role::kDirichlet) dc[s][i] += d * v;
+    }
   }
 }
 
 double SpeciesTransport::reaction_rate_scale(const std::vector<std::vector<double>>& c,
                                              const ParticleState& state) const {
   double worst = 0;
-  for (std::size_t i = 0; i < state.size(); ++i) {
+  (void)state;
+  for (std::size_t i = 0; i < reacts_.size(); ++i) {
     if (!reacts_[i]) continue;
     double sum = 0;
     for (const auto& r : reactions_) {
+      if (!r.fires[i]) continue;
       for (const auto& t : r.reactants) {
         // dv/dC_s = rate * nu C_s^(nu-1)/nu! * prod_{other reactants}
         double d = r.rate * t.nu * t.inv_factorial;

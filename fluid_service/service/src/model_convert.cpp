@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // sadr.fluid.v1.FluidModel -> sadr::fluid::FluidModel (validation at the boundary).
+#include <algorithm>
 #include <map>
 
 #include "sadr/fluid/fluid_service.hpp"
@@ -23,6 +24,8 @@ WallCondition wall_condition(const common::v1::WallBoundary& w) {
       return {WallCondition::Type::kDirichlet, w.value()};
     case common::v1::WALL_CONDITION_NEUMANN:
       return {WallCondition::Type::kNeumann, w.value()};
+    case common::v1::WALL_CONDITION_FREE:
+      return {WallCondition::Type::kFree, 0.0};
     default:
       return {WallCondition::Type::kNoFlux, 0.0};
   }
@@ -97,12 +100,21 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
   for (int r = 0; r < in.reactions_size(); ++r) {
     const auto& rx = in.reactions(r);
     const std::string here = where + ".reactions[" + std::to_string(r) + "]";
-    if (!rx.regions().empty() || !rx.kinds().empty()) {
-      throw InvalidArgument(here +
-                            ": deterministic reactions restricted to regions or kinds are "
-                            "not supported by fluid_service; remove 'regions'/'kinds'");
-    }
     ReactionSpec spec;
+    for (int k = 0; k < rx.kinds_size(); ++k) {
+      if (rx.kinds(k) > 3) {
+        throw InvalidArgument(here + ".kinds[" + std::to_string(k) + "] = " +
+                              std::to_string(rx.kinds(k)) + " (allowed: 0..3)");
+      }
+      spec.kinds.push_back(static_cast<ParticleKind>(rx.kinds(k)));
+    }
+    for (const auto& name : rx.regions()) {
+      const auto& v = wire::region_particles(regions, name, here + ".regions");
+      spec.particles.insert(spec.particles.end(), v.begin(), v.end());
+    }
+    std::sort(spec.particles.begin(), spec.particles.end());  // regions may overlap
+    spec.particles.erase(std::unique(spec.particles.begin(), spec.particles.end()),
+                         spec.particles.end());
     spec.name = rx.name();
     spec.reactants = stoichiometry(rx.reactants(), m, here + ".reactants");
     spec.products = stoichiometry(rx.products(), m, here + ".products");
@@ -131,9 +143,7 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     } else if (key == "neighbor_skin") {
       m.neighbor_skin = value;
     } else {
-      throw InvalidArgument(where + ".parameters: unknown key '" + key +
-                            "' (known: density_diffusion, diffusion_eps, density_band, "
-                            "neighbor_skin)");
+      m.backend_parameters[key] = value;  // the backend checks the name
     }
   }
   if (!in.buoyancy_species().empty()) {

@@ -32,10 +32,7 @@ void to_proto(const Species& in, common::v1::Species& out, std::set<std::string>
       case BoundaryCondition::kNeumann:
         w->set_condition(common::v1::WALL_CONDITION_NEUMANN);
         break;
-      case BoundaryCondition::kFree:
-        throw InvalidArgument("species '" + in.name + "', region '" + b.region +
-                              "': boundary condition 'free' (wall particles that exchange "
-                              "molecules) is not supported by the services yet");
+      case BoundaryCondition::kFree: w->set_condition(common::v1::WALL_CONDITION_FREE); break;
     }
     if (!b.region.empty()) regions_used.insert(b.region);
   }

@@ -51,7 +51,7 @@ FluidModel annihilation_model(const Annihilation& s, ParticleState& p) {
   using T = WallCondition::Type;
   model.species = {{"A", 0.1, true, {}, {{T::kDirichlet, c0}, {T::kDirichlet, 0.0}}},
                    {"B", 0.1, true, {}, {{T::kDirichlet, 0.0}, {T::kDirichlet, c0}}}};
-  model.reactions = {{"annihilation", {{0, 1}, {1, 1}}, {}, 0.1}};
+  model.reactions = {{"annihilation", {{0, 1}, {1, 1}}, {}, 0.1, {}, {}}};
   return model;
 }
 

@@ -7,7 +7,7 @@
 
 namespace sadr::fluid {
 
-/// Registers "sdpd" and "static" (registry.cpp). New backends add one line there.
+/// Registers "sdpd", "static" and "tdpd" (registry.cpp). New backends add one line there.
 void register_builtin_backends(BackendRegistry& registry);
 
 }  // namespace sadr::fluid

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -23,6 +24,9 @@ struct WallCondition {
     kNoFlux,     ///< wall particles do not exchange the species (homogeneous Neumann)
     kDirichlet,  ///< wall particles hold `value` [C] at all times
     kNeumann,    ///< a flux `value` [C length/time] enters the fluid through the wall
+    kFree,       ///< wall particles take part in the species' diffusion and reactions exactly
+                 ///< like fluid particles (exchange with neighbours, integrated by eq 17,
+                 ///< reactions whose `kinds` include kWall fire there); they never move
   };
   Type type = Type::kNoFlux;
   double value = 0.0;
@@ -73,6 +77,10 @@ struct ReactionSpec {
   std::vector<std::pair<int, int>> reactants;  ///< (species index, stoichiometry >= 1)
   std::vector<std::pair<int, int>> products;   ///< (species index, stoichiometry >= 1)
   double rate = 0.0;                           ///< [C^(1 - order) / time]
+  std::vector<ParticleKind> kinds;       ///< kinds where it fires; empty = fluid particles only
+  std::vector<std::uint32_t> particles;  ///< optional restriction to these particle indices
+                                         ///< (into the initial state); empty = all. Checked
+                                         ///< against N at initialize().
 };
 
 /// Boussinesq body acceleration a = coefficient * (C_species - reference) * direction.
@@ -99,7 +107,7 @@ struct FluidModel {
   double smoothing_length = 0.0;           ///< kernel SUPPORT radius h [length]
   std::string kernel = "lucy";             ///< "lucy" | "wendland_c2"
   double reference_density = 1.0;          ///< rho_0 [mass/length^d]
-  double sound_speed = 1.0;                ///< c_0 [length/time]
+  double sound_speed = 1.0;                ///< c_0 [length/time]; >= 0, sdpd needs > 0
   double shear_viscosity = 0.0;            ///< eta [mass/(length^(d-2) time)]
   double temperature = 0.0;                ///< k_B T [energy]; 0 = deterministic SPH (no draws)
   std::array<double, 3> gravity{0, 0, 0};  ///< constant body acceleration [length/time^2]
@@ -124,6 +132,9 @@ struct FluidModel {
   double density_band = 0.5;
   /// Verlet skin as a fraction of h.
   double neighbor_skin = 0.15;
+  /// Backend-specific numbers by name (e.g. tdpd: a, gamma, s1, r_cc, lambda, skin). Each
+  /// backend rejects keys it does not know, naming them (sdpd and static take none).
+  std::map<std::string, double> backend_parameters;
   std::vector<WallRegion> wall_regions;
 
   /// Throws InvalidArgument naming every offending field with value and allowed range.

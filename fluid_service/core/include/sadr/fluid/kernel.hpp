@@ -12,6 +12,8 @@
 ///                   function is (1 + 3q)(1 - q)^3, i.e. identical to Lucy.
 #pragma once
 
+#include <cmath>
+
 #include <numbers>
 #include <string_view>
 
@@ -39,6 +41,7 @@ class Kernel {
       alpha_ = (dimension == 2 ? 7.0 / pi : 21.0 / (2.0 * pi)) / hd;
       f_coef_ = 20.0 * alpha_ * inv_h_ * inv_h_;
     }
+    sqrt_f_coef_ = std::sqrt(f_coef_);
   }
 
   /// W(r) [1/length^d].
@@ -56,17 +59,28 @@ class Kernel {
     const double s = 1.0 - q;
     return type_ == KernelType::kLucy ? f_coef_ * s * s : f_coef_ * s * s * s;
   }
+  /// sqrt(F(r)) without a square root for Lucy (sqrt(c) (1 - q)); for the noise amplitude.
+  [[nodiscard]] double sqrt_f(double r) const {
+    const double q = r * inv_h_;
+    if (q >= 1.0) return 0.0;
+    const double s = 1.0 - q;
+    return type_ == KernelType::kLucy ? sqrt_f_coef_ * s : sqrt_f_coef_ * s * std::sqrt(s);
+  }
   /// dW/dr [1/length^(d+1)] (<= 0).
   [[nodiscard]] double dw_dr(double r) const { return -r * f(r); }
 
   [[nodiscard]] double support() const { return h_; }
+  [[nodiscard]] double inv_support() const { return inv_h_; }
+  /// F = f_coef (1 - q)^2 (Lucy) or f_coef (1 - q)^3 (Wendland C2).
+  [[nodiscard]] double f_coef() const { return f_coef_; }
+  [[nodiscard]] double sqrt_f_coef() const { return sqrt_f_coef_; }
   [[nodiscard]] int dimension() const { return dim_; }
   [[nodiscard]] KernelType type() const { return type_; }
   /// W(0) [1/length^d] (self contribution to a summation density).
   [[nodiscard]] double w0() const { return alpha_; }
 
  private:
-  double h_ = 1.0, inv_h_ = 1.0, alpha_ = 1.0, f_coef_ = 1.0;
+  double h_ = 1.0, inv_h_ = 1.0, alpha_ = 1.0, f_coef_ = 1.0, sqrt_f_coef_ = 1.0;
   int dim_ = 3;
   KernelType type_ = KernelType::kLucy;
 };

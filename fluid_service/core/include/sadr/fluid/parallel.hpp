@@ -7,9 +7,29 @@
 #pragma once
 
 #include <cstdint>
+#ifdef SADR_HAVE_OPENMP
+#include <omp.h>
+#endif
 
 namespace sadr::fluid {
 
 inline constexpr std::int64_t kMinParallel = 1024;
+
+/// Threads a parallel region may use (1 without OpenMP).
+inline int max_threads() {
+#ifdef SADR_HAVE_OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+/// Index of the calling thread in its parallel region (0 outside one / without OpenMP).
+inline int thread_index() {
+#ifdef SADR_HAVE_OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
 
 }  // namespace sadr::fluid

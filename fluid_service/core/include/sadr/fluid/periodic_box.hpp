@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 
 #include "sadr/common/particle_state.hpp"
 
@@ -19,6 +20,18 @@ class PeriodicBox {
       half_[a] = 0.5 * len_[a];
       per_[a] = a < box.dimension && box.periodic[a];
       walled_[a] = a < box.dimension && !box.periodic[a];
+      half_or_inf_[a] = per_[a] ? half_[a] : std::numeric_limits<double>::infinity();
+    }
+  }
+  /// minimum_image() on the first D axes only, branch-free (same result: the shift is applied
+  /// iff |d_a| > L_a/2 on a periodic axis); for the SDPD pair gather.
+  template <int D>
+  void minimum_image_first(double* d) const {
+    for (int a = 0; a < D; ++a) {
+      double t = d[a];
+      t = t > half_or_inf_[a] ? t - len_[a] : t;
+      t = t < -half_or_inf_[a] ? t + len_[a] : t;
+      d[a] = t;
     }
   }
   /// Replaces d (= x_i - x_j) by its minimum image on periodic axes (|d_a| <= L_a/2).
@@ -58,6 +71,7 @@ class PeriodicBox {
  private:
   Box box_{};
   std::array<double, 3> len_{1, 1, 1}, half_{0.5, 0.5, 0.5};
+  std::array<double, 3> half_or_inf_{0.5, 0.5, 0.5};  ///< L/2 on periodic axes, else +inf
   std::array<bool, 3> per_{false, false, false};
   std::array<bool, 3> walled_{false, false, false};
 };

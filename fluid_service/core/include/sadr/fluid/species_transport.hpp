@@ -47,7 +47,29 @@ class SpeciesTransport {
       }
     }
   }
-  /// Adds the mass-action reaction rates at particle i to dc.
+  /// add_pair for a wall particle i that is kFree for some species (WallCondition::kFree):
+  /// only the species for which i itself is kFree are updated.
+  void add_pair_wall(std::size_t i, std::size_t j, double k_ij, const double* x_ij,
+                     const std::vector<std::vector<double>>& c,
+                     std::vector<std::vector<double>>& dc) const {
+    for (const int s : transported_) {
+      if (roles_[s][i] != Role::kFree) continue;
+      const Role rj = roles_[s][j];
+      if (rj == Role::kFree || rj == Role::kDirichlet) {
+        dc[s][i] += k_ij * two_kappa_[s] * (c[s][j] - c[s][i]);
+      } else if (rj == Role::kNeumann) {
+        const auto& n = normal_[region_[j]];
+        const double xn = x_ij[0] * n[0] + x_ij[1] * n[1] + x_ij[2] * n[2];
+        dc[s][i] += k_ij * two_kappa_[s] * neumann_grad_[s][region_[j] + 1] * xn;
+      }
+    }
+  }
+  /// True for a wall particle that takes part in species transport: kFree for some transported
+  /// species or a site of some reaction (ReactionSpec::kinds contains kWall). Backends gather
+  /// species terms for such walls with add_pair_wall() and call add_reactions() for them.
+  [[nodiscard]] bool active_wall(std::size_t i) const { return active_wall_[i] != 0; }
+  /// Adds the mass-action reaction rates at particle i to dc (only reactions that fire at i:
+  /// ReactionSpec::kinds and ::particles; held Dirichlet values are never changed).
   void add_reactions(std::size_t i, const std::vector<std::vector<double>>& c,
                      std::vector<std::vector<double>>& dc) const;
   /// max_i sum_r sum_{s in reactants} nu_s |dv_r/dC_s| [1/time]: the largest reaction
@@ -68,6 +90,7 @@ class SpeciesTransport {
     double rate;
     std::vector<Term> reactants;
     std::vector<std::pair<int, int>> delta;  // (species, net stoichiometry change)
+    std::vector<std::uint8_t> fires;         // [particle] 1 where the reaction fires
   };
   [[nodiscard]] double velocity(const CompiledReaction& r, std::size_t i,
                                 const std::vector<std::vector<double>>& c) const;
@@ -81,7 +104,8 @@ class SpeciesTransport {
   std::vector<std::vector<double>> neumann_grad_;  // [species][region + 1] = q / kappa
   std::vector<std::vector<double>> dirichlet_;     // [species][region + 1] = value
   std::vector<CompiledReaction> reactions_;
-  std::vector<std::uint8_t> reacts_;  // particle takes part in reactions (non-wall)
+  std::vector<std::uint8_t> reacts_;       // some reaction fires at the particle
+  std::vector<std::uint8_t> active_wall_;  // wall particle with species transport (see above)
 };
 
 }  // namespace sadr::fluid

@@ -1,0 +1,422 @@
+// SPDX-License-Identifier: MIT
+/// \file tdpd_backend.cpp
+/// tDPD initialisation, Groot-Warren modified velocity-Verlet, limits, health and restart.
+#include "sadr/fluid/tdpd_backend.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "sadr/common/status.hpp"
+#include "sadr/fluid/parallel.hpp"
+#include "sadr/fluid/state_blob.hpp"
+#include "tdpd_forces.hpp"
+
+namespace sadr::fluid {
+namespace {
+
+constexpr std::string_view kMagic = "sadr.tdpd";
+constexpr std::uint32_t kVersion = 1;
+constexpr std::uint64_t kInitialEval = std::uint64_t{1} << 63;  // noise "sub" flag
+
+std::string num(double v) {
+  std::ostringstream os;
+  os.precision(17);
+  os << v;
+  return os.str();
+}
+
+}  // namespace
+
+void TdpdParameters::validate(double r_c) const {
+  std::vector<std::string> bad;
+  auto need = [&](bool ok, const char* field, double v, const char* range) {
+    if (!ok)
+      bad.push_back(std::string("tdpd.") + field + " = " + num(v) + " (allowed " + range + ")");
+  };
+  need(std::isfinite(a) && a >= 0.0, "a", a, ">= 0");
+  need(std::isfinite(gamma) && gamma >= 0.0, "gamma", gamma, ">= 0");
+  need(std::isfinite(s1) && s1 >= 0.0, "s1", s1, ">= 0");
+  need(std::isfinite(r_cc) && r_cc >= 0.0 && r_cc <= r_c, "r_cc", r_cc, "[0, r_c] (0 = r_c)");
+  need(std::isfinite(lambda) && lambda >= 0.0 && lambda <= 1.0, "lambda", lambda, "[0, 1]");
+  need(std::isfinite(skin) && skin >= 0.0 && skin <= 1.0, "skin", skin, "[0, 1] (0 = model)");
+  if (!bad.empty()) {
+    std::string msg = "invalid tDPD parameters:";
+    for (const auto& b : bad) msg += "\n  " + b;
+    throw InvalidArgument(msg);
+  }
+}
+
+double TdpdBackend::fickian_slope_ideal(double rho, double r_cc) {
+  // D_F = (rho kappa / (2 d)) int r^2 w_DC dV; d = 3, w_DC = (1 - r/r_cc)^2 -> 2 pi rho r^5/315.
+  return 2.0 * std::numbers::pi * rho * std::pow(r_cc, 5) / 315.0;
+}
+
+void TdpdBackend::require_initialized(const char* what) const {
+  if (!initialized_)
+    throw FailedPrecondition(std::string("tdpd: ") + what + " before initialize()");
+}
+
+void TdpdBackend::initialize(const FluidModel& model, const ParticleState& initial,
+                             const std::vector<std::vector<double>>& concentrations) {
+  {
+    // FluidModel::validate() asks for shear_viscosity > 0 with k_B T > 0 (SDPD's
+    // fluctuation-dissipation); in tDPD the viscosity is an output of (a, gamma, rho, k_B T)
+    // and the field is ignored, so it is checked on a copy with a placeholder value.
+    FluidModel check = model;
+    if (check.shear_viscosity <= 0.0) check.shear_viscosity = 1.0;
+    check.validate();
+  }
+  initial.validate();
+  for (const auto& [key, value] : model.backend_parameters) {
+    if (key == "a") {
+      params_.a = value;
+    } else if (key == "gamma") {
+      params_.gamma = value;
+    } else if (key == "s1") {
+      params_.s1 = value;
+    } else if (key == "r_cc") {
+      params_.r_cc = value;
+    } else if (key == "lambda") {
+      params_.lambda = value;
+    } else if (key == "skin") {
+      params_.skin = value;
+    } else {
+      throw InvalidArgument("tdpd: unknown parameter '" + key +
+                            "' (known: a, gamma, s1, r_cc, lambda, skin)");
+    }
+  }
+  params_.validate(model.smoothing_length);
+  if (initial.dimension != model.box.dimension) {
+    throw InvalidArgument("tdpd: initial.dimension = " + std::to_string(initial.dimension) +
+                          " differs from box.dimension = " + std::to_string(model.box.dimension));
+  }
+  const std::size_t ns = model.species.size();
+  if (!concentrations.empty() && concentrations.size() != ns) {
+    throw InvalidArgument("tdpd: concentrations has " + std::to_string(concentrations.size()) +
+                          " species, model has " + std::to_string(ns));
+  }
+  n_ = initial.size();
+  for (std::size_t s = 0; s < concentrations.size(); ++s) {
+    if (concentrations[s].size() != n_) {
+      throw InvalidArgument("tdpd: concentrations[" + std::to_string(s) + "] has " +
+                            std::to_string(concentrations[s].size()) + " values, expected " +
+                            std::to_string(n_));
+    }
+  }
+  model_ = model;
+  pbox_ = PeriodicBox(model.box);
+  const double rc = model.smoothing_length;
+  r_cc_ = params_.r_cc > 0.0 ? params_.r_cc : rc;
+  sigma_ = std::sqrt(2.0 * params_.gamma * model.temperature);
+  kernel_ = Kernel(KernelType::kLucy, model.box.dimension, rc);
+  // Verlet skin, narrowed where a small periodic box cannot hold 2 list cutoffs.
+  double skin = params_.skin > 0.0 ? params_.skin : model.neighbor_skin;
+  for (int k = 0; k < model.box.dimension; ++k) {
+    if (model.box.periodic[k]) skin = std::min(skin, model.box.length(k) / (2.0 * rc) - 1.0 - 1e-9);
+  }
+  const double list_cut = rc * (1.0 + std::max(skin, 0.0));
+  builder_ = std::make_unique<CellListBuilder>(model.box, list_cut);
+  skin_half2_ = 0.25 * (list_cut - rc) * (list_cut - rc);
+  species_.setup(model, initial);
+  kappa_.assign(ns, 0.0);
+  for (std::size_t s = 0; s < ns; ++s) kappa_[s] = model.species[s].diffusivity;
+  kinds_ = initial.kinds;
+  ids_ = initial.ids;
+  wall_.assign(n_, 0);
+  for (std::size_t i = 0; i < n_; ++i) wall_[i] = initial.kind(i) == ParticleKind::kWall;
+  any_wall_ = std::find(wall_.begin(), wall_.end(), std::uint8_t{1}) != wall_.end();
+  rho_valid_ = false;
+
+  x_ = initial.positions;
+  for (std::size_t i = 0; i < n_; ++i) pbox_.wrap(&x_[3 * i]);
+  v_ = initial.velocities.empty() ? std::vector<double>(3 * n_, 0.0) : initial.velocities;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (wall_[i]) std::fill_n(v_.begin() + static_cast<std::ptrdiff_t>(3 * i), 3, 0.0);
+  }
+  c_.assign(ns, std::vector<double>(n_, 0.0));
+  for (std::size_t s = 0; s < concentrations.size(); ++s) c_[s] = concentrations[s];
+  species_.apply_dirichlet(c_);
+  q_.assign(ns, std::vector<double>(n_, 0.0));
+  q_new_ = q_;
+  f_.assign(3 * n_, 0.0);
+  have_forces_ = false;
+  flux_stale_ = false;
+  time_ = 0.0;
+  list_ref_x_.clear();
+  nlist_ = NeighborList{};
+  initialized_ = true;
+}
+
+void TdpdBackend::ensure_neighbors() const {
+  bool rebuild = list_ref_x_.size() != x_.size();
+  for (std::size_t i = 0; !rebuild && i < n_; ++i) {
+    double d[3] = {x_[3 * i] - list_ref_x_[3 * i], x_[3 * i + 1] - list_ref_x_[3 * i + 1],
+                   x_[3 * i + 2] - list_ref_x_[3 * i + 2]};
+    pbox_.minimum_image(d);
+    rebuild = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > skin_half2_;
+  }
+  if (!rebuild) return;
+  builder_->build(x_, nlist_);
+  list_ref_x_ = x_;
+  build_half_pairs();
+}
+
+StabilityLimits TdpdBackend::current_limits() const {
+  require_initialized("current_limits()");
+  StabilityLimits lim;
+  const int d = model_.box.dimension;
+  const double rc = model_.smoothing_length;
+  const double rho = model_.reference_density;
+  double vmax2 = 0.0;
+  for (double vk : v_) vmax2 = std::max(vmax2, vk * vk);
+  const double vmax = std::sqrt(static_cast<double>(d) * vmax2);
+  // Acoustic: a particle may not cross a quarter cutoff per step at the DPD sound speed.
+  lim.acoustic = 0.25 * rc / (tdpd::sound_speed(rho, model_.temperature, params_.a) + vmax);
+  // Dissipative relaxation: row sum of the pair-friction operator, gamma rho int w_D dV, with
+  // the isotropic projection average 1/d; explicit stability needs dt * that <= 1.
+  if (params_.gamma > 0.0) {
+    lim.viscous =
+        static_cast<double>(d) / (params_.gamma * rho * tdpd::ball_integral(d, rc, params_.s1));
+  }
+  const double g2 = model_.gravity[0] * model_.gravity[0] + model_.gravity[1] * model_.gravity[1] +
+                    model_.gravity[2] * model_.gravity[2];
+  if (g2 > 0.0) lim.body_force = 0.25 * std::sqrt(rc / std::sqrt(g2));
+  // li2015 eq 13: dt < 1 / (rho kappa int w_DC dV), w_DC = (1 - r/r_cc)^2.
+  double kmax = 0.0;
+  for (const int s : species_.transported()) kmax = std::max(kmax, kappa_[s]);
+  if (kmax > 0.0) lim.diffusion = 1.0 / (rho * kmax * tdpd::ball_integral(d, r_cc_, 2.0));
+  return lim;
+}
+
+void TdpdBackend::check_health(std::uint64_t step_index, std::uint32_t substep) const {
+  auto fail = [&](std::size_t i, const std::string& what, double value) {
+    throw NumericalFailure("tdpd blow-up at step " + std::to_string(step_index) + " substep " +
+                           std::to_string(substep) + ": particle " + std::to_string(i) + " " +
+                           what + " = " + num(value));
+  };
+  const int d = model_.box.dimension;
+  for (std::size_t i = 0; i < n_; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(x_[3 * i + k]))
+        fail(i, "position[" + std::to_string(k) + "]", x_[3 * i + k]);
+      if (!std::isfinite(v_[3 * i + k]))
+        fail(i, "velocity[" + std::to_string(k) + "]", v_[3 * i + k]);
+    }
+    for (int k = 0; k < d; ++k) {
+      if (!model_.box.periodic[k] &&
+          (x_[3 * i + k] < model_.box.lo[k] || x_[3 * i + k] > model_.box.hi[k])) {
+        fail(i, "position[" + std::to_string(k) + "] (left the box)", x_[3 * i + k]);
+      }
+    }
+    for (const int s : species_.transported()) {
+      if (!std::isfinite(c_[s][i])) {
+        fail(i, "concentration of " + model_.species[s].name, c_[s][i]);
+      }
+    }
+  }
+}
+
+StepReport TdpdBackend::advance(std::uint64_t step_index, double time_step) {
+  require_initialized("advance()");
+  if (!(time_step > 0.0) || !std::isfinite(time_step)) {
+    throw InvalidArgument("tdpd: time_step = " + num(time_step) + " (allowed > 0)");
+  }
+  const StabilityLimits lim = current_limits();
+  const auto [stable, criterion] = lim.smallest();
+  double dt_max = stable;
+  if (model_.max_time_step > 0.0) {
+    if (!model_.force_time_step) lim.check(model_.max_time_step);
+    dt_max = model_.force_time_step ? model_.max_time_step : std::min(stable, model_.max_time_step);
+  }
+  const auto nsub =
+      static_cast<std::uint32_t>(std::max(1.0, std::ceil(time_step / dt_max * (1.0 - 1e-12))));
+  const double dt = time_step / nsub;
+  const auto n = static_cast<std::int64_t>(n_);
+  const double lam = params_.lambda;
+  const auto& transported = species_.transported();
+  v_pred_.resize(3 * n_);
+  for (std::uint32_t k = 0; k < nsub; ++k) {
+    const std::uint64_t key = (step_index << 16) + k;  // < 2^48 for step_index < 2^32
+    if (!have_forces_) {
+      evaluate(x_, v_, c_, key | kInitialEval, dt, f_, q_);
+      have_forces_ = true;
+      flux_stale_ = false;
+    }
+    if (flux_stale_) {
+      evaluate(x_, v_, c_, key, dt, f_new_, q_, /*flux_only=*/true);
+      flux_stale_ = false;
+    }
+#pragma omp parallel for schedule(static) if (n >= kMinParallel)
+    for (std::int64_t ii = 0; ii < n; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (wall_[i]) {
+        for (int a = 0; a < 3; ++a) v_pred_[3 * i + a] = 0.0;
+        continue;
+      }
+      for (int a = 0; a < 3; ++a) {
+        const std::size_t ia = 3 * i + static_cast<std::size_t>(a);
+        x_[ia] += dt * v_[ia] + 0.5 * dt * dt * f_[ia];
+        v_pred_[ia] = v_[ia] + lam * dt * f_[ia];
+        v_[ia] += 0.5 * dt * f_[ia];
+      }
+      pbox_.wrap(&x_[3 * i]);
+      for (const int s : transported) c_[s][i] += 0.5 * dt * q_[s][i];
+    }
+    evaluate(x_, v_pred_, c_, key, dt, f_new_, q_new_);
+#pragma omp parallel for schedule(static) if (n >= kMinParallel)
+    for (std::int64_t ii = 0; ii < n; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (wall_[i]) continue;
+      for (int a = 0; a < 3; ++a) v_[3 * i + a] += 0.5 * dt * f_new_[3 * i + a];
+      for (const int s : transported) c_[s][i] += 0.5 * dt * q_new_[s][i];
+    }
+    std::swap(f_, f_new_);
+    std::swap(q_, q_new_);
+    time_ += dt;
+    check_health(step_index, k);
+  }
+  StepReport rep;
+  rep.time = time_;
+  rep.substeps = nsub;
+  rep.particles_moved = true;
+  rep.stable_dt = stable;
+  rep.limiting_criterion = criterion;
+  double vmax2 = 0.0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    vmax2 = std::max(vmax2, v_[3 * i] * v_[3 * i] + v_[3 * i + 1] * v_[3 * i + 1] +
+                                v_[3 * i + 2] * v_[3 * i + 2]);
+  }
+  rep.max_speed = std::sqrt(vmax2);
+  const auto& rho = rho_;  // from the last force evaluation, at the current positions
+  if (!rho.empty()) {
+    const auto [lo, hi] = std::minmax_element(rho.begin(), rho.end());
+    rep.min_density = *lo;
+    rep.max_density = *hi;
+  }
+  return rep;
+}
+
+std::vector<double> TdpdBackend::densities() const {
+  if (rho_valid_) return rho_;
+  // Kernel summation rho_i = sum_j m_j W(r_ij) (self included), Lucy kernel of support r_c,
+  // masses 1: a number density [1/length^d] on the current (up-to-date within skin) list.
+  std::vector<double> rho(n_, 0.0);
+  const double rc2 = model_.smoothing_length * model_.smoothing_length;
+  const auto n = static_cast<std::int64_t>(n_);
+  ensure_neighbors();
+#pragma omp parallel for schedule(static) if (n >= kMinParallel)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    double sum = kernel_.w0();
+    auto add = [&](std::size_t j) {
+      double d[3] = {x_[3 * i] - x_[3 * j], x_[3 * i + 1] - x_[3 * j + 1],
+                     x_[3 * i + 2] - x_[3 * j + 2]};
+      pbox_.minimum_image(d);
+      const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      if (r2 < rc2) sum += kernel_.w(std::sqrt(r2));
+    };
+    for (const std::uint32_t j : nlist_.of(i)) add(j);
+    rho[i] = sum;
+  }
+  return rho;
+}
+
+void TdpdBackend::read_state(ParticleState& out) const {
+  require_initialized("read_state()");
+  out.dimension = model_.box.dimension;
+  out.positions = x_;
+  out.velocities = v_;
+  out.densities = densities();
+  out.masses.assign(n_, 1.0);
+  out.kinds = kinds_;
+  out.ids = ids_;
+}
+
+const std::vector<double>& TdpdBackend::concentrations(int species) const {
+  require_initialized("concentrations()");
+  if (species < 0 || static_cast<std::size_t>(species) >= c_.size()) {
+    throw InvalidArgument("tdpd: species index " + std::to_string(species) + " out of range [0, " +
+                          std::to_string(c_.size()) + ")");
+  }
+  return c_[static_cast<std::size_t>(species)];
+}
+
+void TdpdBackend::set_concentrations(int species, std::span<const double> values) {
+  require_initialized("set_concentrations()");
+  (void)concentrations(species);
+  if (values.size() != n_) {
+    throw InvalidArgument("tdpd: set_concentrations got " + std::to_string(values.size()) +
+                          " values, expected " + std::to_string(n_));
+  }
+  c_[static_cast<std::size_t>(species)].assign(values.begin(), values.end());
+  species_.apply_dirichlet(c_);
+  flux_stale_ = true;  // the stored fluxes belong to the old concentrations (forces do not)
+}
+
+void TdpdBackend::evaluate_current(std::uint64_t noise_step, double dt, std::vector<double>& force,
+                                   std::vector<std::vector<double>>& flux) {
+  require_initialized("evaluate_current()");
+  flux.assign(c_.size(), {});
+  evaluate(x_, v_, c_, noise_step << 16, dt, force, flux);
+}
+
+std::string TdpdBackend::save() const {
+  require_initialized("save()");
+  BlobWriter w;
+  w.put_string(kMagic);
+  w.put(kVersion);
+  w.put<std::uint64_t>(n_);
+  w.put<std::uint64_t>(c_.size());
+  w.put(time_);
+  w.put<std::uint8_t>(have_forces_ ? 1 : 0);
+  w.put<std::uint8_t>(flux_stale_ ? 1 : 0);
+  w.put_vector(x_);
+  w.put_vector(v_);
+  w.put_vector(f_);
+  for (const auto& c : c_) w.put_vector(c);
+  for (const auto& q : q_) w.put_vector(q);
+  return w.take();
+}
+
+void TdpdBackend::restore(std::string_view blob) {
+  require_initialized("restore()");
+  BlobReader r(blob);
+  if (r.get_string() != kMagic) throw InvalidArgument("tdpd: blob is not a tDPD state");
+  const auto version = r.get<std::uint32_t>();
+  if (version != kVersion) {
+    throw InvalidArgument("tdpd: blob version " + std::to_string(version) + ", expected " +
+                          std::to_string(kVersion));
+  }
+  if (r.get<std::uint64_t>() != n_ || r.get<std::uint64_t>() != c_.size()) {
+    throw InvalidArgument("tdpd: blob from a model with a different particle or species count");
+  }
+  const double t = r.get<double>();
+  const bool hf = r.get<std::uint8_t>() != 0;
+  const bool fs = r.get<std::uint8_t>() != 0;
+  auto x = r.get_vector<double>(3 * n_);
+  auto v = r.get_vector<double>(3 * n_);
+  auto f = r.get_vector<double>(3 * n_);
+  std::vector<std::vector<double>> c(c_.size()), q(c_.size());
+  for (auto& cs : c) cs = r.get_vector<double>(n_);
+  for (auto& qs : q) qs = r.get_vector<double>(n_);
+  if (!r.at_end()) throw InvalidArgument("tdpd: trailing bytes in state blob");
+  time_ = t;
+  have_forces_ = hf;
+  flux_stale_ = fs;
+  x_ = std::move(x);
+  v_ = std::move(v);
+  f_ = std::move(f);
+  c_ = std::move(c);
+  q_ = std::move(q);
+  list_ref_x_.clear();  // rebuilt on demand; pair sums do not depend on when
+  rho_valid_ = false;
+}
+
+void register_tdpd_backend(BackendRegistry& registry) {
+  registry.add("tdpd", [] { return std::make_unique<TdpdBackend>(); });
+}
+
+}  // namespace sadr::fluid

@@ -1,0 +1,116 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/fluid/sdpd_pair_block.hpp"
+
+#include <cmath>
+
+namespace sadr::fluid {
+
+void SdpdPairBlock::reserve(std::size_t n) {
+  if (j.size() >= n) return;
+  j.resize(n);
+  for (auto* a : {&x, &v, &force}) {
+    for (auto& c : *a) c.resize(n);
+  }
+  for (auto* a : {&r2, &pd2_j, &inv_nd_j, &m_j, &vol_j, &rho_j, &sqrt_inv_nd_j, &drho, &r, &f, &amp,
+                  &amp_r}) {
+    a->resize(n);
+  }
+}
+
+std::size_t SdpdPairBlock::bytes() const {
+  return j.capacity() * (4 + 8 * 3 * 3 + 8 * 12);
+}
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+    !defined(__SANITIZE_ADDRESS__)
+#define SADR_PAIR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define SADR_PAIR_CLONES
+#endif
+
+namespace {
+
+template <int D, bool kLucy>
+SADR_PAIR_CLONES void block_impl(const SdpdPairParams& p, const SdpdPairI& pi, std::size_t n,
+                                 SdpdPairBlock& b) {
+  const double* __restrict r2v = b.r2.data();
+  const double* __restrict pd2j = b.pd2_j.data();
+  const double* __restrict indj = b.inv_nd_j.data();
+  const double* __restrict mj = b.m_j.data();
+  const double* __restrict volj = b.vol_j.data();
+  const double* __restrict rhoj = b.rho_j.data();
+  double* __restrict ro = b.r.data();
+  double* __restrict fo = b.f.data();
+  double* __restrict dro = b.drho.data();
+  const double* __restrict x0 = b.x[0].data();
+  const double* __restrict x1 = b.x[1].data();
+  const double* __restrict x2 = b.x[2].data();
+  const double* __restrict v0 = b.v[0].data();
+  const double* __restrict v1 = b.v[1].data();
+  const double* __restrict v2 = b.v[2].data();
+  double* __restrict f0 = b.force[0].data();
+  double* __restrict f1 = b.force[1].data();
+  double* __restrict f2 = b.force[2].data();
+  const double inv_h = p.inv_h, fc = p.f_coef, friction = p.friction;
+  const double pd2_i = pi.pd2, ind_i = pi.inv_nd, rho_i = pi.rho;
+  const double two_dhc0 = 2.0 * p.delta_h_c0, eps = p.eps_h2;
+#pragma GCC ivdep
+  for (std::size_t k = 0; k < n; ++k) {
+    const double r2 = r2v[k];
+    const double r = std::sqrt(r2);
+    const double inv_r2 = 1.0 / r2;
+    const double s = 1.0 - r * inv_h;
+    const double f = kLucy ? fc * s * s : fc * s * s * s;
+    ro[k] = r;
+    fo[k] = f;
+    const double fp = (pd2_i + pd2j[k]) * f;
+    const double fv = friction * f * (ind_i * indj[k]);
+    double xv = x0[k] * v0[k];
+    if constexpr (D > 1) xv += x1[k] * v1[k];
+    if constexpr (D > 2) xv += x2[k] * v2[k];
+    const double c = xv * inv_r2;
+    f0[k] = fp * x0[k] - fv * (v0[k] + x0[k] * c);
+    if constexpr (D > 1) f1[k] = fp * x1[k] - fv * (v1[k] + x1[k] * c);
+    if constexpr (D > 2) f2[k] = fp * x2[k] - fv * (v2[k] + x2[k] * c);
+    dro[k] = -mj[k] * f * xv + two_dhc0 * volj[k] * (rhoj[k] - rho_i) * f * r2 / (r2 + eps);
+  }
+  if (p.noise) {
+    const double* __restrict sqj = b.sqrt_inv_nd_j.data();
+    const std::uint32_t* __restrict jj = b.j.data();
+    double* __restrict amp = b.amp.data();
+    double* __restrict amp_r = b.amp_r.data();
+    const double sfc = p.sqrt_f_coef, na = p.noise_amp, sq_i = pi.sqrt_inv_nd;
+    const std::uint32_t i = pi.i;
+#pragma GCC ivdep
+    for (std::size_t k = 0; k < n; ++k) {
+      const double r = ro[k];
+      const double s = 1.0 - r * inv_h;
+      const double sf = kLucy ? sfc * s : sfc * s * std::sqrt(s);
+      // sqrt(amp2/2) = sqrt(2 k_B T c_D eta) sqrt(F_ij) sqrt(1/d_i) sqrt(1/d_j)
+      const double a = (na * sf) * (sq_i * sqj[k]);
+      amp[k] = i < jj[k] ? a : -a;
+      amp_r[k] = a / r;
+    }
+  }
+}
+
+}  // namespace
+
+template <int D>
+void sdpd_pair_block(const SdpdPairParams& p, const SdpdPairI& pi, std::size_t n,
+                     SdpdPairBlock& b) {
+  if (p.lucy) {
+    block_impl<D, true>(p, pi, n, b);
+  } else {
+    block_impl<D, false>(p, pi, n, b);
+  }
+}
+
+template void sdpd_pair_block<1>(const SdpdPairParams&, const SdpdPairI&, std::size_t,
+                                 SdpdPairBlock&);
+template void sdpd_pair_block<2>(const SdpdPairParams&, const SdpdPairI&, std::size_t,
+                                 SdpdPairBlock&);
+template void sdpd_pair_block<3>(const SdpdPairParams&, const SdpdPairI&, std::size_t,
+                                 SdpdPairBlock&);
+
+}  // namespace sadr::fluid
