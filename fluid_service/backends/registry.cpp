@@ -2,8 +2,8 @@
 #include <memory>
 
 #include "sadr/fluid/builtin_backends.hpp"
-#include "sdpd/sdpd_backend.hpp"
 #include "sadr/fluid/tdpd_backend.hpp"
+#include "sdpd/sdpd_backend.hpp"
 #include "static/static_backend.hpp"
 
 namespace sadr::fluid {

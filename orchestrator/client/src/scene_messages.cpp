@@ -32,7 +32,9 @@ void to_proto(const Species& in, common::v1::Species& out, std::set<std::string>
       case BoundaryCondition::kNeumann:
         w->set_condition(common::v1::WALL_CONDITION_NEUMANN);
         break;
-      case BoundaryCondition::kFree: w->set_condition(common::v1::WALL_CONDITION_FREE); break;
+      case BoundaryCondition::kFree:
+        w->set_condition(common::v1::WALL_CONDITION_FREE);
+        break;
     }
     if (!b.region.empty()) regions_used.insert(b.region);
   }

@@ -122,7 +122,8 @@ enum class JumpConvention { kSymmetric, kVolume };
 std::string_view to_string(JumpConvention convention);
 
 struct SsaSettings {
-  JumpConvention convention = JumpConvention::kVolume;  ///< same default as ssa_service (NOTATION.md)
+  JumpConvention convention =
+      JumpConvention::kVolume;   ///< same default as ssa_service (NOTATION.md)
   double regularization = 0.01;  ///< eps_h in r^2/(r^2 + eps_h h^2), >= 0
 };
 
