@@ -17,6 +17,7 @@ PACKAGES=(
   libyaml-cpp-dev                           # scene files
   nlohmann-json3-dev                        # JSON manifests and benchmark output
   python3 python3-numpy python3-scipy       # reference scripts for validation tests
+  procps                                    # pgrep, used by the e2e tests to find service processes
 )
 
 missing=()
