@@ -173,7 +173,7 @@ int lattice_scenario(const Options& o) {
 }
 
 int sph_scenario(const Options& o) {
-  const int n = 200;
+  const int n = o.n > 0 ? o.n : 200;  // --n 100: the 1e4-particle coupled case
   const double dx = 1.0, h = 3.0 * dx;
   Model m;
   m.box.dimension = 2;

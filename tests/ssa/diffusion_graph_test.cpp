@@ -3,7 +3,12 @@
 #include "sadr/ssa/diffusion_graph.hpp"
 
 #include <gtest/gtest.h>
+#include <algorithm>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include "sadr/ssa/neighbor_list.hpp"
 
 #include <cmath>
 #include <map>
@@ -152,6 +157,84 @@ TEST(GraphJson, DumpHasTheRdmeLinearMeanFormat) {
   EXPECT_DOUBLE_EQ(j.at("b").get<double>(), 5.0);
   EXPECT_EQ(j.at("x0").size(), 5u);
   EXPECT_EQ(j.at("times").size(), 2u);
+}
+
+// The graph (half-stencil pair search, or the full-stencil path when a periodic axis has
+// < 3 cells) has exactly the brute-force pairs, weights from the formulas, rows with the
+// non-wall targets first, and consistent sums and wall distances.
+TEST(DiffusionGraph, EdgesEqualBruteForcePairsInEveryGeometry) {
+  for (int dim = 1; dim <= 3; ++dim) {
+    for (bool periodic : {false, true}) {
+      for (double h : {1.3, 3.4}) {
+        for (auto conv : {JumpConvention::kVolume, JumpConvention::kSymmetric}) {
+          Box box = testing::make_box(dim, 10.0, periodic);
+          if (dim > 1) box.hi[1] = 7.0;  // 3.4 on a periodic 7-long axis: 2 cells
+          std::mt19937_64 gen(7 + dim);
+          const std::size_t n = dim == 1 ? 40 : dim == 2 ? 200 : 400;
+          ParticleState p;
+          p.dimension = dim;
+          p.resize(n, false);
+          std::uniform_real_distribution<double> u01(0.0, 1.0);
+          for (std::size_t i = 0; i < n; ++i) {
+            for (int a = 0; a < dim; ++a) {
+              p.positions[3 * i + a] = box.lo[a] + (box.hi[a] - box.lo[a]) * u01(gen);
+            }
+            p.masses[i] = 0.5 + u01(gen);
+            p.densities[i] = 0.8 + 0.4 * u01(gen);
+            if (i % 5 == 0) p.kinds[i] = ParticleKind::kWall;
+          }
+          Model m = testing::diffusion_model(box, h, 1.0, conv);
+          const DiffusionGraph g = DiffusionGraph::build(m, p);
+          const NeighborList nl = brute_force_neighbor_list(box, p.positions, h);
+          const std::string where = "dim " + std::to_string(dim) + " periodic " +
+                                    std::to_string(periodic) + " h " + std::to_string(h);
+          for (std::uint32_t i = 0; i < n; ++i) {
+            std::vector<std::pair<std::uint32_t, double>> expect, got;
+            double wall_r = std::numeric_limits<double>::infinity();
+            for (auto k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
+              const std::uint32_t j = nl.col[k];
+              const double r2 = nl.r2[k], reg = r2 / (r2 + 0.01 * h * h);
+              const double f = lucy_f(std::sqrt(r2), h, dim);
+              const double vj = p.masses[j] / p.densities[j];
+              const double mi = p.masses[i], mj = p.masses[j];
+              const double ri = p.densities[i], rj = p.densities[j];
+              const double w = conv == JumpConvention::kVolume
+                                   ? 2 * vj * reg * f
+                                   : 2 * (mi * mj / (mi + mj)) * ((ri + rj) / (ri * rj)) * reg * f;
+              expect.emplace_back(j, w);
+              if (p.kinds[j] == ParticleKind::kWall) wall_r = std::min(wall_r, std::sqrt(r2));
+            }
+            double all = 0, nowall = 0;
+            for (auto k = g.row_start[i]; k < g.row_start[i + 1]; ++k) {
+              const std::uint32_t j = g.edges[k].target;
+              ASSERT_EQ(g.is_wall[j] != 0, k >= g.split[i]) << where;
+              const double w = g.edges[k].weight;  // a copy: Edge is packed (misaligned)
+              got.emplace_back(j, w);
+              all += w;
+              if (k < g.split[i]) nowall += w;
+            }
+            std::sort(expect.begin(), expect.end());
+            std::sort(got.begin(), got.end());
+            ASSERT_EQ(got.size(), expect.size()) << where << " particle " << i;
+            for (std::size_t k = 0; k < got.size(); ++k) {
+              ASSERT_EQ(got[k].first, expect[k].first) << where;
+              // (1 - q)^2 cancels near the cutoff: absolute round-off ~ eps * F(0).
+              ASSERT_NEAR(got[k].second, expect[k].second,
+                          1e-12 * (expect[k].second + 8 * lucy_f(0.0, h, dim)))
+                  << where;
+            }
+            EXPECT_NEAR(g.sum_all[i], all, 1e-12 * all) << where;
+            EXPECT_NEAR(g.sum_nowall[i], nowall, 1e-12 * all) << where;
+            if (std::isinf(wall_r)) {
+              EXPECT_TRUE(std::isinf(g.wall_distance[i])) << where;
+            } else {
+              EXPECT_NEAR(g.wall_distance[i], wall_r, 1e-12 * h) << where;
+            }
+          }
+        }
+      }
+    }
+  }
 }
 
 }  // namespace

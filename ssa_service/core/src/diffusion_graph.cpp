@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/ssa/diffusion_graph.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <string>
 
+#include "cell_grid.hpp"
 #include "sadr/common/status.hpp"
-#include "sadr/ssa/neighbor_list.hpp"
 
 namespace sadr::ssa {
 
@@ -67,15 +68,171 @@ void validate_particles(const Model& model, const ParticleState& p) {
 
 }  // namespace
 
-DiffusionGraph DiffusionGraph::build(const Model& model, const ParticleState& particles) {
-  validate_particles(model, particles);
+namespace {
+
+/// The rows of the graph from the cell grid: for each particle i, the pairs
+/// within h in cell order, weights computed on the fly, non-wall targets
+/// first (then the wall targets, kept aside in `wall_edges`).
+template <int D>
+void fill_rows(DiffusionGraph& g, const detail::CellGrid& grid, const Model& model,
+               const ParticleState& particles, std::vector<DiffusionGraph::Edge>& wall_edges) {
   const std::size_t n = particles.size();
   const double h = model.smoothing_length;
   const double eps_h2 = model.regularization * h * h;
-  const int d = model.box.dimension;
-  const NeighborList nl = build_neighbor_list(model.box, particles.positions, h);
+  const double inv_h = 1.0 / h;
+  // F(r) = 12 alpha_d (1 - q)^2 / h^2 (lucy_f), with the constant hoisted.
+  const double f0 = lucy_f(0.0, h, D);
+  const bool symmetric = model.convention == JumpConvention::kSymmetric;
+  const double* m = particles.masses.data();
+  const double* rho = particles.densities.data();
+  const double* vol = g.volume.data();
+  const std::uint8_t* wall = g.is_wall.data();
+  const bool any_wall =
+      std::any_of(g.is_wall.begin(), g.is_wall.end(), [](std::uint8_t w) { return w != 0; });
+  g.edges.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    g.row_start[i] = static_cast<std::uint32_t>(g.edges.size());
+    wall_edges.clear();
+    double sum_nowall = 0, sum_wall = 0, wall_r2 = std::numeric_limits<double>::infinity();
+    const double mi = m[i], rhoi = rho[i];
+    grid.for_each_neighbor<D>(static_cast<std::uint32_t>(i), [&](std::uint32_t j, double r2) {
+      const double r = std::sqrt(r2);
+      const double one_q = 1.0 - r * inv_h;
+      const double reg_f = (r2 / (r2 + eps_h2)) * (f0 * one_q * one_q);
+      // Volume-consistent: D_ij = 2 V_j F_ij reg, so D_ij V_i = D_ji V_j.
+      // drawert2019 eq 28: D_ij = 2 m_i m_j/(m_i+m_j) (rho_i+rho_j)/(rho_i rho_j) reg F_ij.
+      const double w =
+          symmetric ? 2.0 * (mi * m[j] / (mi + m[j])) * ((rhoi + rho[j]) / (rhoi * rho[j])) * reg_f
+                    : 2.0 * vol[j] * reg_f;
+      if (any_wall && wall[j]) {
+        if (r2 < wall_r2) wall_r2 = r2;
+        if (!(w > 0)) return;  // coincident particles (reg = 0) carry no edge
+        wall_edges.push_back(DiffusionGraph::Edge{w, j});
+        sum_wall += w;
+      } else {
+        if (!(w > 0)) return;
+        g.edges.push_back(DiffusionGraph::Edge{w, j});
+        sum_nowall += w;
+      }
+    });
+    g.split[i] = static_cast<std::uint32_t>(g.edges.size());
+    g.edges.insert(g.edges.end(), wall_edges.begin(), wall_edges.end());
+    g.sum_nowall[i] = sum_nowall;
+    g.sum_all[i] = sum_nowall + sum_wall;
+    g.wall_distance[i] = std::sqrt(wall_r2);
+  }
+  g.row_start[n] = static_cast<std::uint32_t>(g.edges.size());
+}
 
+/// One undirected edge found by the half-stencil search, both directed weights.
+struct PairEdge {
+  std::uint32_t i, j;
+  double w_ij, w_ji;
+};
+
+/// Scratch reused between builds (one per thread).
+struct PairScratch {
+  std::vector<PairEdge> pairs;
+  std::vector<std::uint32_t> cursor_nowall, cursor_wall;
+  std::vector<double> wall_r2;
+};
+
+/// The graph from the half-stencil pair search: each pair's kernel factor
+/// F reg (one sqrt, one division) is computed once and written into both rows;
+/// rows are laid out by counting (non-wall targets first).
+template <int D>
+void fill_rows_pairs(DiffusionGraph& g, const detail::CellGrid& grid, const Model& model,
+                     const ParticleState& particles, PairScratch& sc) {
+  const std::size_t n = particles.size();
+  const double h = model.smoothing_length;
+  const double eps_h2 = model.regularization * h * h;
+  const double inv_h = 1.0 / h;
+  const double f0 = lucy_f(0.0, h, D);  // F(r) = f0 (1 - r/h)^2
+  const bool symmetric = model.convention == JumpConvention::kSymmetric;
+  const double* m = particles.masses.data();
+  const double* rho = particles.densities.data();
+  const double* vol = g.volume.data();
+  const std::uint8_t* wall = g.is_wall.data();
+  const bool any_wall =
+      std::any_of(g.is_wall.begin(), g.is_wall.end(), [](std::uint8_t w) { return w != 0; });
+  sc.pairs.clear();
+  sc.cursor_nowall.assign(n + 1, 0);  // degrees first, then write cursors
+  sc.cursor_wall.assign(n, 0);
+  std::uint32_t* deg_nw = sc.cursor_nowall.data();
+  std::uint32_t* deg_w = sc.cursor_wall.data();
+  if (any_wall) sc.wall_r2.assign(n, std::numeric_limits<double>::infinity());
+  grid.for_each_pair<D>([&](std::uint32_t i, std::uint32_t j, double r2) {
+    if (any_wall) {
+      if (wall[j] && r2 < sc.wall_r2[i]) sc.wall_r2[i] = r2;
+      if (wall[i] && r2 < sc.wall_r2[j]) sc.wall_r2[j] = r2;
+    }
+    const double r = std::sqrt(r2);
+    const double one_q = 1.0 - r * inv_h;
+    const double reg_f = (r2 / (r2 + eps_h2)) * (f0 * one_q * one_q);
+    double w_ij = 0, w_ji = 0;
+    if (symmetric) {
+      // drawert2019 eq 28: D_ij = 2 m_i m_j/(m_i+m_j) (rho_i+rho_j)/(rho_i rho_j) reg F_ij.
+      w_ij = w_ji =
+          2.0 * (m[i] * m[j] / (m[i] + m[j])) * ((rho[i] + rho[j]) / (rho[i] * rho[j])) * reg_f;
+    } else {
+      // Volume-consistent: D_ij = 2 V_j F_ij reg, so D_ij V_i = D_ji V_j.
+      w_ij = 2.0 * vol[j] * reg_f;
+      w_ji = 2.0 * vol[i] * reg_f;
+    }
+    if (!(w_ij > 0 && w_ji > 0)) return;  // coincident particles (reg = 0) carry no edge
+    sc.pairs.push_back(PairEdge{i, j, w_ij, w_ji});
+    ++(any_wall && wall[j] ? deg_w[i] : deg_nw[i]);
+    ++(any_wall && wall[i] ? deg_w[j] : deg_nw[j]);
+  });
+  // Row layout: [row_start, split) non-wall targets, [split, next row) walls.
+  std::uint32_t out = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t nw = deg_nw[i], w = deg_w[i];
+    g.row_start[i] = out;
+    g.split[i] = out + nw;
+    deg_nw[i] = out;
+    deg_w[i] = out + nw;
+    out += nw + w;
+  }
+  g.row_start[n] = out;
+  g.edges.resize(out);
+  DiffusionGraph::Edge* e = g.edges.data();
+  std::fill(g.sum_all.begin(), g.sum_all.end(), 0.0);
+  std::fill(g.sum_nowall.begin(), g.sum_nowall.end(), 0.0);
+  double* sum_all = g.sum_all.data();
+  double* sum_nowall = g.sum_nowall.data();
+  for (const PairEdge& p : sc.pairs) {
+    const bool wi = any_wall && wall[p.i], wj = any_wall && wall[p.j];
+    e[(wj ? deg_w[p.i] : deg_nw[p.i])++] = DiffusionGraph::Edge{p.w_ij, p.j};
+    e[(wi ? deg_w[p.j] : deg_nw[p.j])++] = DiffusionGraph::Edge{p.w_ji, p.i};
+    sum_all[p.i] += p.w_ij;
+    sum_all[p.j] += p.w_ji;
+    if (!wj) sum_nowall[p.i] += p.w_ij;
+    if (!wi) sum_nowall[p.j] += p.w_ji;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    g.wall_distance[i] =
+        any_wall ? std::sqrt(sc.wall_r2[i]) : std::numeric_limits<double>::infinity();
+  }
+}
+
+}  // namespace
+
+DiffusionGraph DiffusionGraph::build(const Model& model, const ParticleState& particles) {
   DiffusionGraph g;
+  build_into(g, model, particles);
+  return g;
+}
+
+void DiffusionGraph::build_into(DiffusionGraph& g, const Model& model,
+                                const ParticleState& particles) {
+  validate_particles(model, particles);
+  // Cell grid and scratch reused between builds (one per thread).
+  thread_local detail::CellGrid grid;
+  thread_local std::vector<Edge> wall_edges;
+  const std::size_t n = particles.size();
+  const int d = model.box.dimension;
+  grid.build(model.box, particles.positions, model.smoothing_length);
   g.dimension = d;
   g.volume.resize(n);
   g.is_wall.resize(n);
@@ -87,47 +244,19 @@ DiffusionGraph DiffusionGraph::build(const Model& model, const ParticleState& pa
   }
   g.row_start.resize(n + 1);
   g.split.resize(n);
-  g.edges.resize(nl.col.size());
-  g.sum_all.assign(n, 0.0);
-  g.sum_nowall.assign(n, 0.0);
-  g.wall_distance.assign(n, std::numeric_limits<double>::infinity());
-  const bool symmetric = model.convention == JumpConvention::kSymmetric;
-  const double* m = particles.masses.data();
-  const double* rho = particles.densities.data();
-  std::uint32_t out = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    g.row_start[i] = out;
-    // Two passes over the row: non-wall targets first, then wall targets.
-    for (int pass = 0; pass < 2; ++pass) {
-      if (pass == 1) g.split[i] = out;
-      for (std::uint32_t k = nl.row_start[i]; k < nl.row_start[i + 1]; ++k) {
-        const std::uint32_t j = nl.col[k];
-        if (g.is_wall[j] != pass) continue;
-        const double r2 = nl.r2[k];
-        const double r = std::sqrt(r2);
-        if (pass == 1 && r < g.wall_distance[i]) g.wall_distance[i] = r;
-        const double reg = r2 / (r2 + eps_h2);
-        const double f = lucy_f(r, h, d);
-        double w = 0;
-        if (symmetric) {
-          // drawert2019 eq 28: D_ij = 2 m_i m_j/(m_i+m_j) (rho_i+rho_j)/(rho_i rho_j) reg F_ij.
-          w = 2.0 * (m[i] * m[j] / (m[i] + m[j])) * ((rho[i] + rho[j]) / (rho[i] * rho[j])) * reg *
-              f;
-        } else {
-          // Volume-consistent: D_ij = 2 V_j F_ij reg, so D_ij V_i = D_ji V_j.
-          w = 2.0 * g.volume[j] * reg * f;
-        }
-        if (!(w > 0)) continue;  // coincident particles (reg = 0) carry no edge
-        g.edges[out] = Edge{w, j};
-        ++out;
-        g.sum_all[i] += w;
-        if (pass == 0) g.sum_nowall[i] += w;
-      }
-    }
+  g.sum_all.resize(n);
+  g.sum_nowall.resize(n);
+  g.wall_distance.resize(n);
+  if (grid.half_stencil_ok()) {
+    thread_local PairScratch scratch;
+    if (d == 1) fill_rows_pairs<1>(g, grid, model, particles, scratch);
+    if (d == 2) fill_rows_pairs<2>(g, grid, model, particles, scratch);
+    if (d == 3) fill_rows_pairs<3>(g, grid, model, particles, scratch);
+    return;
   }
-  g.row_start[n] = out;
-  g.edges.resize(out);
-  return g;
+  if (d == 1) fill_rows<1>(g, grid, model, particles, wall_edges);
+  if (d == 2) fill_rows<2>(g, grid, model, particles, wall_edges);
+  if (d == 3) fill_rows<3>(g, grid, model, particles, wall_edges);
 }
 
 }  // namespace sadr::ssa

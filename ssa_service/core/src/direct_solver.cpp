@@ -24,7 +24,10 @@ double DirectSolver::total_propensity() const {
     for (int s : state_.diffusing_species()) {
       const double kx = state_.model().species[s].diffusivity * static_cast<double>(x[s * n + i]);
       const std::uint32_t end = state_.edge_end(s, i);
-      for (std::uint32_t k = g.row_start[i]; k < end; ++k) a0 += kx * g.edges[k].weight;
+      const bool filter = state_.has_free_walls(s);
+      for (std::uint32_t k = g.row_start[i]; k < end; ++k) {
+        if (!filter || state_.uses_edge(s, i, k)) a0 += kx * g.edges[k].weight;
+      }
     }
   }
   return a0;
@@ -55,7 +58,9 @@ void DirectSolver::fire(double u) {
       const double kx = state_.model().species[s].diffusivity * static_cast<double>(x[s * n + i]);
       if (kx == 0) continue;
       const std::uint32_t end = state_.edge_end(s, i);
+      const bool filter = state_.has_free_walls(s);
       for (std::uint32_t k = g.row_start[i]; k < end; ++k) {
+        if (filter && !state_.uses_edge(s, i, k)) continue;
         const double p = kx * g.edges[k].weight;
         if (u < p) {
           state_.apply_jump(s, i, g.edges[k].target);

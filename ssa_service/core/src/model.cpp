@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/ssa/model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <set>
@@ -130,6 +131,29 @@ void Model::validate() const {
                        " (allowed: finite and >= 0)");
     }
   }
+  for (std::size_t k = 0; k < free_walls.size(); ++k) {
+    const FreeWall& fw = free_walls[k];
+    const std::string f = "free_walls[" + std::to_string(k) + "]";
+    check_species_ref(issues, f + ".species", fw.species, ns);
+    for (std::size_t l = 0; l < reservoirs.size(); ++l) {
+      const WallReservoir& w = reservoirs[l];
+      if (w.species != fw.species) continue;
+      const std::string both =
+          f + " and reservoirs[" + std::to_string(l) + "]: species " + std::to_string(fw.species);
+      if (fw.voxels.empty() && w.voxels.empty()) {
+        issues.push_back(both +
+                         ": every wall particle is both free and a reservoir (list the voxels "
+                         "of one of them)");
+        continue;
+      }
+      for (std::uint32_t v : fw.voxels) {
+        if (std::find(w.voxels.begin(), w.voxels.end(), v) != w.voxels.end()) {
+          issues.push_back(both + ", voxel " + std::to_string(v) +
+                           " is both a reservoir and free (allowed: one of them)");
+        }
+      }
+    }
+  }
   if (issues.empty()) return;
   std::string msg = "invalid ssa model: ";
   for (std::size_t k = 0; k < issues.size(); ++k) msg += (k ? "; " : "") + issues[k];
@@ -198,6 +222,14 @@ std::uint64_t Model::fingerprint() const {
   }
   f.pod(-1);
   for (const auto& n : neumann) f.pod(n.species), f.pod(n.flux);
+  if (!free_walls.empty()) {  // absent from the hash when unused: old fingerprints stay valid
+    f.pod(-2);
+    for (const auto& w : free_walls) {
+      f.pod(w.species);
+      for (auto v : w.voxels) f.pod(v);
+      f.pod(-1);
+    }
+  }
   return f.h;
 }
 

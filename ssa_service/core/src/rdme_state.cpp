@@ -3,11 +3,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "sadr/common/status.hpp"
 
 namespace sadr::ssa {
+
+namespace {
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+}  // namespace
 
 RdmeState::RdmeState(Model model) : model_(std::move(model)) {
   model_.validate();
@@ -19,6 +24,11 @@ RdmeState::RdmeState(Model model) : model_(std::move(model)) {
     if (kappa_[s] > 0) diffusing_.push_back(static_cast<int>(s));
   }
   for (const WallReservoir& w : model_.reservoirs) reservoir_[w.species] = 1;
+  free_slot_.assign(ns, -1);
+  int slots = 0;
+  for (const FreeWall& fw : model_.free_walls) {
+    if (free_slot_[fw.species] < 0) free_slot_[fw.species] = slots++;
+  }
 }
 
 namespace {
@@ -44,13 +54,32 @@ bool RdmeState::update_graph(const ParticleState& particles) {
                               " (voxels must persist; build a new solver)",
                           {{"field", "particles"}, {"value", std::to_string(particles.size())}});
   }
-  DiffusionGraph g = DiffusionGraph::build(model_, particles);  // validates
-  table_ = ReactionTable::build(model_, g);
-  graph_ = std::move(g);
+  // Voxel lists that name particles: checked before anything is overwritten.
+  auto check_walls = [&](const char* what, std::size_t k, const std::vector<std::uint32_t>& v) {
+    if (!v.empty()) particles.validate();  // array lengths, before kind() is used
+    for (std::uint32_t x : v) {
+      if (x >= particles.size() || particles.kind(x) != ParticleKind::kWall) {
+        throw InvalidArgument(
+            std::string(what) + "[" + std::to_string(k) + "].voxels contains " + std::to_string(x) +
+                ", which is not a wall particle (allowed: " + "wall particles among 0.." +
+                std::to_string(static_cast<long>(particles.size()) - 1) + ")",
+            {{"field", std::string(what) + ".voxels"}, {"value", std::to_string(x)}});
+      }
+    }
+  };
+  for (std::size_t k = 0; k < model_.reservoirs.size(); ++k) {
+    check_walls("reservoirs", k, model_.reservoirs[k].voxels);
+  }
+  for (std::size_t k = 0; k < model_.free_walls.size(); ++k) {
+    check_walls("free_walls", k, model_.free_walls[k].voxels);
+  }
+  DiffusionGraph::build_into(graph_, model_, particles);  // validates before writing
+  table_ = ReactionTable::build(model_, graph_);
   n_ = graph_.size();
-  voxels_.assign(n_, VoxelRecord{});
+  voxels_.resize(n_);
   for (std::size_t i = 0; i < n_; ++i) {
     VoxelRecord& v = voxels_[i];
+    v.rate = 0;
     v.sum_all = graph_.sum_all[i];
     v.begin = graph_.row_start[i];
     v.split = graph_.split[i];
@@ -66,9 +95,51 @@ bool RdmeState::update_graph(const ParticleState& particles) {
   inputs_.masses = particles.masses;
   inputs_.kinds = graph_.kind;
   if (counts_.empty()) counts_.assign(model_.species.size() * n_, 0);
+  assign_free_walls();
   assign_reservoir_concentrations();
+  compute_free_sums();
   apply_reservoirs();
   return true;
+}
+
+void RdmeState::assign_free_walls() {
+  int slots = 0;
+  for (int slot : free_slot_) slots = std::max(slots, slot + 1);
+  free_mask_.assign(static_cast<std::size_t>(slots) * n_, 0);
+  for (std::size_t k = 0; k < model_.free_walls.size(); ++k) {
+    const FreeWall& fw = model_.free_walls[k];
+    const std::size_t base = static_cast<std::size_t>(free_slot_[fw.species]) * n_;
+    if (fw.voxels.empty()) {
+      for (std::size_t i = 0; i < n_; ++i) {
+        if (graph_.is_wall[i] && free_mask_[base + i] == 0) free_mask_[base + i] = 1;
+      }
+      continue;
+    }
+    for (std::uint32_t v : fw.voxels) {
+      if (v >= n_ || !graph_.is_wall[v]) {
+        throw InvalidArgument("free_walls[" + std::to_string(k) + "].voxels contains " +
+                                  std::to_string(v) + ", which is not a wall particle (allowed: " +
+                                  "wall particles among 0.." + std::to_string(n_ - 1) + ")",
+                              {{"field", "free_walls.voxels"}, {"value", std::to_string(v)}});
+      }
+      free_mask_[base + v] = 2;
+    }
+  }
+}
+
+void RdmeState::compute_free_sums() {
+  free_sum_.assign(free_mask_.size(), 0.0);
+  for (std::size_t s = 0; s < free_slot_.size(); ++s) {
+    if (free_slot_[s] < 0) continue;
+    const std::size_t base = static_cast<std::size_t>(free_slot_[s]) * n_;
+    for (std::uint32_t i = 0; i < n_; ++i) {
+      double sum = 0;  // in row order, the order fire() scans
+      for (std::uint32_t k = voxels_[i].begin; k < voxels_[i].end; ++k) {
+        if (uses_edge(static_cast<int>(s), i, k)) sum += graph_.edges[k].weight;
+      }
+      free_sum_[base + i] = sum;
+    }
+  }
 }
 
 void RdmeState::assign_reservoir_concentrations() {
@@ -78,10 +149,13 @@ void RdmeState::assign_reservoir_concentrations() {
   for (std::size_t k = 0; k < model_.reservoirs.size(); ++k) {
     const WallReservoir& w = model_.reservoirs[k];
     const std::size_t base = static_cast<std::size_t>(w.species) * n_;
+    const int slot = free_slot_[w.species];
+    const std::uint8_t* free = slot >= 0 ? free_mask_.data() + slot * n_ : nullptr;
     if (w.voxels.empty()) {
       for (std::size_t i = 0; i < n_; ++i) {
-        if (graph_.is_wall[i] && !explicit_set[base + i])
+        if (graph_.is_wall[i] && !explicit_set[base + i] && !(free && free[i])) {
           reservoir_conc_[base + i] = w.concentration;
+        }
       }
       continue;
     }
@@ -97,6 +171,13 @@ void RdmeState::assign_reservoir_concentrations() {
                                   std::to_string(w.species),
                               {{"field", "reservoirs.voxels"}, {"value", std::to_string(v)}});
       }
+      if (free && free[v] == 2) {
+        throw InvalidArgument("reservoirs[" + std::to_string(k) + "].voxels: wall particle " +
+                                  std::to_string(v) + " is also listed free for species " +
+                                  std::to_string(w.species) + " (allowed: one of them)",
+                              {{"field", "reservoirs.voxels"}, {"value", std::to_string(v)}});
+      }
+      if (free) free_mask_[slot * n_ + v] = 0;  // an explicit reservoir beats all-walls free
       explicit_set[base + v] = 1;
       reservoir_conc_[base + v] = w.concentration;
     }
@@ -114,7 +195,7 @@ bool RdmeState::apply_reservoirs() {
   for (std::size_t s = 0; s < reservoir_.size(); ++s) {
     if (!reservoir_[s]) continue;
     for (std::size_t i = 0; i < n_; ++i) {
-      if (!graph_.is_wall[i]) continue;
+      if (!fixed(static_cast<int>(s), static_cast<std::uint32_t>(i))) continue;
       const std::int64_t x = reservoir_count(static_cast<int>(s), static_cast<std::uint32_t>(i));
       if (counts_[s * n_ + i] != x) {
         counts_[s * n_ + i] = x;
@@ -183,6 +264,23 @@ std::uint32_t RdmeState::apply_jump(int s, std::uint32_t i, std::uint32_t j) {
   return j;
 }
 
+std::uint32_t RdmeState::free_edge(int s, std::uint32_t i, double v) const {
+  // The usable out-edge where the cumulative weight first exceeds v; the last
+  // usable one when round-off leaves v beyond the sum.
+  std::uint32_t last = kNoVoxel;
+  for (std::uint32_t k = voxels_[i].begin; k < voxels_[i].end; ++k) {
+    if (!uses_edge(s, i, k)) continue;
+    last = k;
+    v -= graph_.edges[k].weight;
+    if (v < 0) break;
+  }
+  if (last == kNoVoxel) {
+    throw Error(StatusCode::kInternal, "RdmeState::fire: voxel " + std::to_string(i) +
+                                           " has no usable edge for species " + std::to_string(s));
+  }
+  return last;
+}
+
 std::uint32_t RdmeState::fire(std::uint32_t i, double u) {
   // Last channel with a positive propensity: the fallback when round-off puts
   // u at or beyond the recomputed sum.
@@ -211,6 +309,7 @@ std::uint32_t RdmeState::fire(std::uint32_t i, double u) {
       double v = u / per_weight;
       const std::uint32_t end = edge_end(s, i);
       std::uint32_t k = voxels_[i].begin;
+      if (has_free_walls(s)) return apply_jump(s, i, graph_.edges[free_edge(s, i, v)].target);
       for (; k + 1 < end; ++k) {
         v -= graph_.edges[k].weight;
         if (v < 0) break;
@@ -226,6 +325,9 @@ std::uint32_t RdmeState::fire(std::uint32_t i, double u) {
   }
   if (last_kind == 1) {
     const int s = static_cast<int>(last_index);
+    if (has_free_walls(s)) {
+      return apply_jump(s, i, graph_.edges[free_edge(s, i, kInfinity)].target);
+    }
     const std::uint32_t end = edge_end(s, i);
     return apply_jump(s, i, graph_.edges[end - 1].target);
   }

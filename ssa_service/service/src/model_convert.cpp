@@ -80,6 +80,9 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
           }
           m.neumann.push_back(NeumannSource{idx, wall.value()});
           break;
+        case common::v1::WALL_CONDITION_FREE:
+          m.free_walls.push_back(FreeWall{idx, std::move(voxels)});
+          break;
         default:
           break;  // no-flux
       }

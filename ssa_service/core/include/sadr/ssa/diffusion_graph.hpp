@@ -33,6 +33,10 @@ class DiffusionGraph {
   /// against the model (dimension, finite positions inside walled axes, m, rho > 0)
   /// and throws InvalidArgument naming field, particle index and value.
   static DiffusionGraph build(const Model& model, const ParticleState& particles);
+  /// The same into an existing graph, reusing its allocations (the coupled run
+  /// rebuilds every step). The particles are validated before `g` is touched,
+  /// so on InvalidArgument `g` is unchanged.
+  static void build_into(DiffusionGraph& g, const Model& model, const ParticleState& particles);
 
   [[nodiscard]] std::size_t size() const { return volume.size(); }
   [[nodiscard]] std::size_t edge_count() const { return edges.size(); }

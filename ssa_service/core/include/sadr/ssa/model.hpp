@@ -66,6 +66,22 @@ struct WallReservoir {
   std::vector<std::uint32_t> voxels;  ///< optional: only these wall particles; empty = all walls
 };
 
+/// Wall particles that take part in species `species` like fluid voxels (cell membranes):
+/// molecules jump in and out of them with the ordinary graph rates, and reactions whose
+/// `kinds` include kWall fire there. They never move (the fluid keeps them fixed).
+///
+/// For species s, a wall particle listed in a FreeWall of s (or every wall particle if that
+/// FreeWall's `voxels` is empty) is an ordinary voxel for s: no reservoir, edges to all
+/// neighbours that are ordinary for s (fluid or free) or reservoirs of s (absorbed there).
+/// Explicit lists take precedence over "all walls": a wall listed by a WallReservoir of s is a
+/// reservoir even if a FreeWall of s has empty `voxels`, and vice versa. A wall listed
+/// explicitly by both, or an all-walls FreeWall together with an all-walls WallReservoir of
+/// the same species, is an error. Listed indices must be wall particles (< N).
+struct FreeWall {
+  int species = 0;
+  std::vector<std::uint32_t> voxels;  ///< wall particles; empty = every wall particle
+};
+
 /// Neumann source: a constant inward flux through the walls, realised as a
 /// zeroth-order source in the first layer of fluid particles next to a wall.
 struct NeumannSource {
@@ -83,6 +99,7 @@ struct Model {
   JumpConvention convention = JumpConvention::kVolume;
   std::vector<WallReservoir> reservoirs;
   std::vector<NeumannSource> neumann;
+  std::vector<FreeWall> free_walls;  ///< walls that are ordinary voxels for a species
 
   /// Checks every field; throws InvalidArgument listing all problems, each with
   /// the field, the value and the allowed range.

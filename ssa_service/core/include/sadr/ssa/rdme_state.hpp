@@ -12,6 +12,10 @@
 ///    (into a wall = absorbed).
 ///  - s has no reservoir: walls are no-flux for s: no jumps into or out of
 ///    wall particles.
+///  - a wall particle that is free for s (Model::free_walls) is an ordinary
+///    voxel for s (like a fluid particle in all of the above).
+/// In general (VoxelRole): an edge i -> j is used by s unless i or j is kClosed
+/// for s or both are kReservoir.
 #pragma once
 
 #include <cassert>
@@ -68,10 +72,31 @@ class RdmeState {
     }
     return a;
   }
+  /// What voxel i is for species s (boundary semantics above).
+  enum class VoxelRole : std::uint8_t {
+    kOpen,       ///< fluid particle or free wall: ordinary voxel
+    kReservoir,  ///< wall reservoir of s: count held fixed
+    kClosed,     ///< no-flux wall for s: no jumps in or out
+  };
+  [[nodiscard]] VoxelRole role(int s, std::uint32_t i) const {
+    if (!graph_.is_wall[i]) return VoxelRole::kOpen;
+    if (free_slot_[s] >= 0 && free_mask_[static_cast<std::size_t>(free_slot_[s]) * n_ + i]) {
+      return VoxelRole::kOpen;
+    }
+    return reservoir_[s] ? VoxelRole::kReservoir : VoxelRole::kClosed;
+  }
+  /// Whether species s jumps along out-edge k of voxel i (k in i's row).
+  [[nodiscard]] bool uses_edge(int s, std::uint32_t i, std::uint32_t k) const {
+    const VoxelRole a = role(s, i);
+    if (a == VoxelRole::kClosed) return false;
+    const VoxelRole b = role(s, graph_.edges[k].target);
+    return b != VoxelRole::kClosed && !(a == VoxelRole::kReservoir && b == VoxelRole::kReservoir);
+  }
   /// Out-weight sum [1/L^2] that species s uses in voxel i (boundary semantics above).
   [[nodiscard]] double jump_weight_sum(int s, std::uint32_t i) const {
     const VoxelRecord& v = voxels_[i];
     if (!has_walls_) return v.sum_all;
+    if (free_slot_[s] >= 0) return free_sum_[static_cast<std::size_t>(free_slot_[s]) * n_ + i];
     if (v.is_wall) return reservoir_[s] ? graph_.sum_nowall[i] : 0.0;
     return reservoir_[s] ? v.sum_all : graph_.sum_nowall[i];
   }
@@ -97,7 +122,7 @@ class RdmeState {
   [[nodiscard]] const std::vector<int>& diffusing_species() const { return diffusing_; }
   /// Whether species s is held fixed in voxel i (reservoir wall).
   [[nodiscard]] bool fixed(int s, std::uint32_t i) const {
-    return reservoir_[s] && graph_.is_wall[i];
+    return reservoir_[s] && role(s, i) == VoxelRole::kReservoir;
   }
   /// Reservoir count of species s in wall voxel i (requires fixed(s, i)).
   [[nodiscard]] std::int64_t reservoir_count(int s, std::uint32_t i) const;
@@ -105,13 +130,16 @@ class RdmeState {
   void apply_reaction(std::size_t r, std::uint32_t i);
   /// Moves one molecule of s from i to j; returns j if X_sj changed, else kNoVoxel.
   std::uint32_t apply_jump(int s, std::uint32_t i, std::uint32_t j);
-  /// End of the edge range species s uses in row i (see jump_weight_sum()).
+  /// End of the edge range species s scans in row i; within it, edges with
+  /// !uses_edge() are skipped only for species with free walls (has_free_walls()).
   [[nodiscard]] std::uint32_t edge_end(int s, std::uint32_t i) const {
     const VoxelRecord& v = voxels_[i];
-    if (!has_walls_) return v.end;
+    if (!has_walls_ || free_slot_[s] >= 0) return v.end;
     if (v.is_wall || !reservoir_[s]) return v.split;
     return v.end;
   }
+  /// Whether some wall particle is free for species s.
+  [[nodiscard]] bool has_free_walls(int s) const { return has_walls_ && free_slot_[s] >= 0; }
 
   /// Hints the memory system that voxel i fires next: prefetches its record,
   /// its out-edges and its counts (the event loop calls this for the new heap
@@ -146,6 +174,10 @@ class RdmeState {
   static_assert(sizeof(VoxelRecord) == 32);
 
   void assign_reservoir_concentrations();
+  void assign_free_walls();
+  /// Out-edge of i picked by the residual v for a species with free walls.
+  [[nodiscard]] std::uint32_t free_edge(int s, std::uint32_t i, double v) const;
+  void compute_free_sums();
 
   Model model_;
   DiffusionGraph graph_;
@@ -157,6 +189,9 @@ class RdmeState {
   std::vector<int> diffusing_;
   std::vector<std::uint8_t> reservoir_;  ///< per species: has a WallReservoir
   std::vector<double> reservoir_conc_;   ///< per (species, voxel), species-major, walls only
+  std::vector<int> free_slot_;           ///< per species: slot in free_mask_/free_sum_, or -1
+  std::vector<std::uint8_t> free_mask_;  ///< per (slot, voxel): 1 all-walls free, 2 listed free
+  std::vector<double> free_sum_;         ///< per (slot, voxel): jump_weight_sum()
   std::size_t n_ = 0;
   bool has_walls_ = false;
 };

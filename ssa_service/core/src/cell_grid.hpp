@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: MIT
+/// \file cell_grid.hpp
+/// Cell lists shared by build_neighbor_list() and DiffusionGraph::build(): the
+/// particles binned into cells at least `cutoff` wide, their coordinates copied
+/// in cell order (the inner loop streams contiguous memory), and a visitor over
+/// the pairs closer than the cutoff. Allocations are kept between builds.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sadr/common/particle_state.hpp"
+
+namespace sadr::ssa::detail {
+
+class CellGrid {
+ public:
+  /// Bins the particles (3 coordinates each, axes >= box.dimension ignored).
+  void build(const Box& box, std::span<const double> positions, double cutoff);
+
+  /// Calls f(j, r2) for every j != i with |x_i - x_j|^2 = r2 < cutoff^2, in cell
+  /// order (cells z-major, then members in index order). D = box.dimension.
+  template <int D, typename F>
+  void for_each_neighbor(std::uint32_t i, F&& f) const {
+    std::array<std::array<int, 3>, 3> cand{};
+    std::array<std::array<double, 3>, 3> shift{};
+    std::array<int, 3> ncand{1, 1, 1};
+    std::array<double, 3> xi{0, 0, 0};
+    for (int a = 0; a < D; ++a) {
+      xi[a] = x_[D * i + a];
+      const int c = coord(xi[a], a);
+      int k = 0;
+      for (int off = -1; off <= 1; ++off) {
+        int cc = c + off;
+        double sh = 0;
+        if (periodic_[a]) {
+          if (cc < 0) cc += nc_[a], sh = -len_[a];
+          if (cc >= nc_[a]) cc -= nc_[a], sh = len_[a];
+        } else if (cc < 0 || cc >= nc_[a]) {
+          continue;
+        }
+        if (min_image_[a]) {
+          sh = 0;
+          bool dup = false;
+          for (int m = 0; m < k; ++m) dup = dup || cand[a][m] == cc;
+          if (dup) continue;
+        }
+        cand[a][k] = cc;
+        shift[a][k] = sh;
+        ++k;
+      }
+      ncand[a] = k;
+    }
+    if (any_min_image_) {
+      scan<D, true>(i, xi, cand, shift, ncand, f);
+    } else {
+      scan<D, false>(i, xi, cand, shift, ncand, f);
+    }
+  }
+
+  /// True if for_each_pair() may be used (no periodic axis with < 3 cells,
+  /// where one cell could be reached through two images).
+  [[nodiscard]] bool half_stencil_ok() const { return !any_min_image_; }
+
+  /// Calls f(i, j, r2) once per unordered pair closer than the cutoff, with
+  /// r2 computed as |(x_i - x_j) - shift|^2 (i the particle of the earlier cell
+  /// in the half stencil). Deterministic order. Requires half_stencil_ok().
+  template <int D, typename F>
+  void for_each_pair(F&& f) const {
+    // Half stencil: the own cell (later members only) and the neighbour cells
+    // at offsets that are lexicographically positive (z, y, x).
+    std::array<std::array<int, 3>, 13> off{};
+    int n_off = 0;
+    for (int oz = (D >= 3 ? -1 : 0); oz <= (D >= 3 ? 1 : 0); ++oz) {
+      for (int oy = (D >= 2 ? -1 : 0); oy <= (D >= 2 ? 1 : 0); ++oy) {
+        for (int ox = -1; ox <= 1; ++ox) {
+          if (oz > 0 || (oz == 0 && (oy > 0 || (oy == 0 && ox > 0)))) {
+            off[n_off++] = {ox, oy, oz};
+          }
+        }
+      }
+    }
+    const double* xs = xs_.data();
+    const std::uint32_t* members = members_.data();
+    const std::uint32_t* cell_start = cell_start_.data();
+    const double cut2 = cut2_;
+    const std::array<int, 3> nc = nc_;
+    for (int cz = 0; cz < nc[2]; ++cz) {
+      for (int cy = 0; cy < nc[1]; ++cy) {
+        for (int cx = 0; cx < nc[0]; ++cx) {
+          const std::size_t c = (static_cast<std::size_t>(cz) * nc[1] + cy) * nc[0] + cx;
+          const std::uint32_t b = cell_start[c], e = cell_start[c + 1];
+          if (b == e) continue;
+          // Neighbour cells of the half stencil with their image shifts.
+          std::array<std::uint32_t, 13> nb_b{}, nb_e{};
+          std::array<std::array<double, 3>, 13> nb_sh{};
+          int n_nb = 0;
+          for (int k = 0; k < n_off; ++k) {
+            const int cc[3] = {cx + off[k][0], cy + off[k][1], cz + off[k][2]};
+            int w[3];
+            std::array<double, 3> sh{0, 0, 0};
+            bool ok = true;
+            for (int a = 0; a < 3; ++a) {
+              w[a] = cc[a];
+              if (a >= D) continue;
+              if (cc[a] < 0 || cc[a] >= nc[a]) {
+                // A periodic axis with 1 cell would meet itself; with 2 cells
+                // the min-image path is used (half_stencil_ok() is false).
+                if (!periodic_[a] || nc[a] < 3) {
+                  ok = false;
+                  break;
+                }
+                w[a] = cc[a] < 0 ? cc[a] + nc[a] : cc[a] - nc[a];
+                sh[a] = cc[a] < 0 ? -len_[a] : len_[a];
+              }
+            }
+            if (!ok) continue;
+            const std::size_t cn = (static_cast<std::size_t>(w[2]) * nc[1] + w[1]) * nc[0] + w[0];
+            if (cell_start[cn] == cell_start[cn + 1]) continue;
+            nb_b[n_nb] = cell_start[cn];
+            nb_e[n_nb] = cell_start[cn + 1];
+            nb_sh[n_nb] = sh;
+            ++n_nb;
+          }
+          for (std::uint32_t m = b; m < e; ++m) {
+            const std::uint32_t i = members[m];
+            const double x0 = xs[D * m];
+            [[maybe_unused]] const double x1 = D >= 2 ? xs[D * m + 1] : 0.0;
+            [[maybe_unused]] const double x2 = D >= 3 ? xs[D * m + 2] : 0.0;
+            auto run = [&](std::uint32_t lo, std::uint32_t hi, const std::array<double, 3>& sh) {
+              for (std::uint32_t q = lo; q < hi; ++q) {
+                const double dx = (x0 - xs[D * q]) - sh[0];
+                double r2 = dx * dx;
+                if constexpr (D >= 2) {
+                  const double dy = (x1 - xs[D * q + 1]) - sh[1];
+                  r2 += dy * dy;
+                }
+                if constexpr (D >= 3) {
+                  const double dz = (x2 - xs[D * q + 2]) - sh[2];
+                  r2 += dz * dz;
+                }
+                if (r2 < cut2) f(i, members[q], r2);
+              }
+            };
+            run(m + 1, e, std::array<double, 3>{0, 0, 0});
+            for (int k = 0; k < n_nb; ++k) run(nb_b[k], nb_e[k], nb_sh[k]);
+          }
+        }
+      }
+    }
+  }
+
+  [[nodiscard]] int dimension() const { return d_; }
+
+ private:
+  template <int D, bool kMinImage, typename F>
+  void scan(std::uint32_t i, const std::array<double, 3>& xi,
+            const std::array<std::array<int, 3>, 3>& cand,
+            const std::array<std::array<double, 3>, 3>& shift, const std::array<int, 3>& ncand,
+            F& f) const {
+    // Locals: the callback writes memory, so members would be reloaded per pair.
+    const double* xs = xs_.data();
+    const std::uint32_t* members = members_.data();
+    const std::uint32_t* cell_start = cell_start_.data();
+    const double cut2 = cut2_;
+    const double x0 = xi[0];
+    [[maybe_unused]] const double x1 = xi[1], x2 = xi[2];
+    const std::array<bool, 3> mi = min_image_;
+    const std::array<double, 3> len = len_;
+    const std::size_t nc0 = static_cast<std::size_t>(nc_[0]),
+                      nc1 = static_cast<std::size_t>(nc_[1]);
+    for (int iz = 0; iz < ncand[2]; ++iz) {
+      for (int iy = 0; iy < ncand[1]; ++iy) {
+        const std::size_t row = (static_cast<std::size_t>(cand[2][iz]) * nc1 + cand[1][iy]) * nc0;
+        for (int ix = 0; ix < ncand[0]; ++ix) {
+          const std::size_t c = row + static_cast<std::size_t>(cand[0][ix]);
+          const double sx = shift[0][ix];
+          [[maybe_unused]] const double sy = shift[1][iy], sz = shift[2][iz];
+          const std::uint32_t end = cell_start[c + 1];
+          for (std::uint32_t m = cell_start[c]; m < end; ++m) {
+            // (x_i - x_j) - shift, in this order, so that r_ij and r_ji round
+            // identically (symmetric D_ij stays exactly symmetric).
+            double dx = (x0 - xs[D * m]) - sx;
+            if (kMinImage && mi[0]) dx = wrap(dx, len[0]);
+            double r2 = dx * dx;
+            if constexpr (D >= 2) {
+              double dy = (x1 - xs[D * m + 1]) - sy;
+              if (kMinImage && mi[1]) dy = wrap(dy, len[1]);
+              r2 += dy * dy;
+            }
+            if constexpr (D >= 3) {
+              double dz = (x2 - xs[D * m + 2]) - sz;
+              if (kMinImage && mi[2]) dz = wrap(dz, len[2]);
+              r2 += dz * dz;
+            }
+            if (r2 < cut2 && members[m] != i) f(members[m], r2);
+          }
+        }
+      }
+    }
+  }
+
+  static double wrap(double dx, double len) {
+    if (dx > 0.5 * len) return dx - len;
+    if (dx < -0.5 * len) return dx + len;
+    return dx;
+  }
+  [[nodiscard]] int coord(double x, int a) const {
+    const int c = static_cast<int>((x - lo_[a]) * inv_w_[a]);
+    return c < 0 ? 0 : (c > nc_[a] - 1 ? nc_[a] - 1 : c);
+  }
+
+  int d_ = 3;
+  std::array<int, 3> nc_{1, 1, 1};
+  std::array<double, 3> inv_w_{0, 0, 0}, lo_{0, 0, 0}, len_{0, 0, 0};
+  std::array<bool, 3> periodic_{false, false, false}, min_image_{false, false, false};
+  bool any_min_image_ = false;
+  double cut2_ = 0;
+  std::vector<double> x_;   ///< wrapped coordinates, D per particle, index order
+  std::vector<double> xs_;  ///< the same in cell order
+  std::vector<std::uint32_t> cell_of_, cell_start_, members_, fill_;
+};
+
+}  // namespace sadr::ssa::detail
