@@ -103,8 +103,8 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     ReactionSpec spec;
     for (int k = 0; k < rx.kinds_size(); ++k) {
       if (rx.kinds(k) > 3) {
-        throw InvalidArgument(here + ".kinds[" + std::to_string(k) + "] = " +
-                              std::to_string(rx.kinds(k)) + " (allowed: 0..3)");
+        throw InvalidArgument(here + ".kinds[" + std::to_string(k) +
+                              "] = " + std::to_string(rx.kinds(k)) + " (allowed: 0..3)");
       }
       spec.kinds.push_back(static_cast<ParticleKind>(rx.kinds(k)));
     }
