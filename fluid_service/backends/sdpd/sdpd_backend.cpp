@@ -226,19 +226,9 @@ StepReport SdpdBackend::advance(std::uint64_t step_index, double time_step) {
   while (remaining > 0) {
     const std::uint64_t key = (step_index << 16) | sub;
     evaluate(y_, key, r0_, true);
-    const StabilityLimits lim = limits(y_, r0_);
-    const auto [lim_dt, lim_name] = lim.smallest();
-    if (lim_dt < rep.stable_dt) {
-      rep.stable_dt = lim_dt;
-      rep.limiting_criterion = lim_name;
-    }
-    double allowed = lim_dt;
-    if (model_.max_time_step > 0) {
-      if (!model_.force_time_step) lim.check(std::min(model_.max_time_step, remaining));
-      allowed = model_.max_time_step;
-    }
-    const double nsub_rem = std::ceil(remaining / allowed * (1.0 - 1e-12));
-    const double dt = (std::isfinite(nsub_rem) && nsub_rem > 1) ? remaining / nsub_rem : remaining;
+    const auto [dt, lim_dt, lim_name] =
+        next_substep(limits(y_, r0_), model_.max_time_step, model_.force_time_step, remaining,
+                     rep.stable_dt, rep.limiting_criterion);
     if (sub >= kMaxSubsteps) {
       throw NumericalFailure("sdpd: more than 65535 sub-steps needed in one advance (limit '" +
                                  lim_name + "' = " + format_value(lim_dt) +

@@ -156,19 +156,9 @@ StepReport StaticBackend::advance(std::uint64_t step_index, double time_step) {
   } else {
     double remaining = time_step;
     while (remaining > 0) {
-      const StabilityLimits lim = current_limits();
-      const auto [lim_dt, lim_name] = lim.smallest();
-      if (lim_dt < rep.stable_dt) {
-        rep.stable_dt = lim_dt;
-        rep.limiting_criterion = lim_name;
-      }
-      double allowed = lim_dt;
-      if (model_.max_time_step > 0) {
-        if (!model_.force_time_step) lim.check(std::min(model_.max_time_step, remaining));
-        allowed = model_.max_time_step;
-      }
-      const double nsub = std::ceil(remaining / allowed * (1.0 - 1e-12));
-      const double dt = (std::isfinite(nsub) && nsub > 1) ? remaining / nsub : remaining;
+      const double dt = next_substep(current_limits(), model_.max_time_step, model_.force_time_step,
+                                     remaining, rep.stable_dt, rep.limiting_criterion)
+                            .dt;
       rates(c_, dc0_);
       for (const int s : species_.transported()) {
         for (std::size_t i = 0; i < n; ++i) ctmp_[s][i] = c_[s][i] + dt * dc0_[s][i];

@@ -46,4 +46,18 @@ struct StabilityLimits {
   void check(double dt) const;
 };
 
+/// One sub-step chosen by next_substep().
+struct Substep {
+  double dt = 0.0;         ///< sub-step length [time]
+  double limit = 0.0;      ///< the binding stability limit [time]
+  std::string limit_name;  ///< its name ("acoustic", ...)
+};
+
+/// The next sub-step of what `remaining` [time] is left of an advance: `remaining` split
+/// evenly into the fewest pieces no longer than the binding limit, or than `max_time_step`
+/// when that is > 0 (refused through check() unless `force`). Lowers `stable_dt` and sets
+/// `criterion` when the binding limit is tighter than what they hold (StepReport fields).
+Substep next_substep(const StabilityLimits& limits, double max_time_step, bool force,
+                     double remaining, double& stable_dt, std::string& criterion);
+
 }  // namespace sadr::fluid
