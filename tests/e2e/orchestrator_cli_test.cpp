@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "cli_test_support.hpp"
 #include "sadr/orchestrator/checkpoint.hpp"
 #include "sadr/orchestrator/service_process.hpp"
 
@@ -21,32 +22,7 @@ namespace sadr::orchestrator {
 namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
-
-std::string bin(const char* name) {
-  return std::string(SADR_BINARY_DIR) + "/bin/" + name;
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs a shell command; returns its exit code; output goes to `log`.
-int run(const std::string& cmd, const fs::path& log) {
-  const int rc = std::system((cmd + " > '" + log.string() + "' 2>&1").c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
-
-/// A fresh directory per test.
-fs::path scratch(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("sadr-cli-" + std::to_string(getpid()) + "-" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using namespace sadr::e2e;
 
 /// 1D A + B -> 0 between Dirichlet walls (drawert2019 4.1, N = 17, N_b = 100),
 /// short end time: a few hundred thousand events.
@@ -85,29 +61,6 @@ std::string annihilation_scene(double end, const std::string& outputs, double ch
   if (checkpoint_every > 0) s << "  checkpoint_every: " << checkpoint_every << "\n";
   s << "seed: 42\n";
   return s.str();
-}
-
-fs::path write_scene(const fs::path& dir, const std::string& text) {
-  const fs::path p = dir / "scene.yaml";
-  std::ofstream(p) << text;
-  return p;
-}
-
-std::vector<fs::path> frames(const fs::path& out) {
-  std::vector<fs::path> f;
-  for (const auto& e : fs::directory_iterator(out / "frames")) f.push_back(e.path());
-  std::sort(f.begin(), f.end());
-  return f;
-}
-
-void expect_same_frames(const fs::path& a, const fs::path& b) {
-  const auto fa = frames(a), fb = frames(b);
-  ASSERT_EQ(fa.size(), fb.size());
-  ASSERT_FALSE(fa.empty());
-  for (std::size_t i = 0; i < fa.size(); ++i) {
-    EXPECT_EQ(fa[i].filename(), fb[i].filename());
-    EXPECT_TRUE(read_file(fa[i]) == read_file(fb[i])) << fa[i] << " differs from " << fb[i];
-  }
 }
 
 TEST(OrchestratorCli, ProcessesEmbeddedAndRemoteGiveIdenticalFrames) {

@@ -138,7 +138,8 @@ TEST(Plan, TextAndJsonForms) {
   s.fluid.temperature = 0.0;
   const Plan p = make_plan(s);
   const auto lines = p.lines();
-  EXPECT_TRUE(mentions(lines, "fluid_service: launched, advanced every coupling step"));
+  EXPECT_TRUE(mentions(
+      lines, "fluid_service (" + s.fluid.backend + "): launched, advanced every coupling step"));
   EXPECT_TRUE(mentions(lines, "ssa_service: launched; species on the wire: A"));
   EXPECT_TRUE(mentions(lines, "thermal noise: off"));
   EXPECT_TRUE(mentions(lines, "skipped: thermal noise"));
@@ -147,6 +148,7 @@ TEST(Plan, TextAndJsonForms) {
   EXPECT_EQ(j.at("thermal_noise"), false);
   EXPECT_EQ(j.at("ssa_species"), nlohmann::json::array({"A"}));
   EXPECT_EQ(j.at("splitting"), "lie");
+  EXPECT_EQ(j.at("fluid_backend"), s.fluid.backend);
   EXPECT_EQ(j.at("skipped").size(), p.skipped.size());
 }
 

@@ -68,6 +68,7 @@ Plan make_plan(const Scene& scene) {
     p.fluid_species = deterministic;
     for (const auto& s : p.back_transfer_species) p.fluid_species.push_back(s);
   }
+  p.fluid_backend = scene.fluid.backend;
   p.splitting = scene.time.splitting;
   if (p.fluid_stepping && p.ssa_service) {
     p.fluid_calls_per_step = p.splitting == Splitting::kStrang ? 2 : 1;
@@ -82,7 +83,7 @@ Plan make_plan(const Scene& scene) {
 
 std::vector<std::string> Plan::lines() const {
   std::vector<std::string> out;
-  out.push_back(std::string("fluid_service: ") +
+  out.push_back(std::string("fluid_service (") + fluid_backend + "): " +
                 (fluid_service
                      ? (fluid_stepping ? "launched, advanced every coupling step" : "launched")
                      : "not launched") +
@@ -106,6 +107,7 @@ std::vector<std::string> Plan::lines() const {
 
 nlohmann::json Plan::to_json() const {
   return nlohmann::json{
+      {"fluid_backend", fluid_backend},
       {"fluid_service", fluid_service},
       {"fluid_stepping", fluid_stepping},
       {"ssa_service", ssa_service},

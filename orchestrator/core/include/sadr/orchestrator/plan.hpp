@@ -21,6 +21,7 @@
 namespace sadr::orchestrator {
 
 struct Plan {
+  std::string fluid_backend;                ///< backend name from the scene (sdpd, static, tdpd)
   bool fluid_service = true;                ///< launch fluid_service
   bool fluid_stepping = true;               ///< advance the fluid every coupling step (not static)
   bool ssa_service = false;                 ///< launch ssa_service
