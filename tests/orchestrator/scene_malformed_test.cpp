@@ -209,6 +209,18 @@ const std::vector<MalformedCase>& cases() {
        "  end: 1.0\n",
        "  end: 1.0\n  end: 2.0\n",
        {"scene.yaml:28:3: duplicate key 'end' in time"}},
+      {"inflow_on_deterministic_species",
+       "    diffusivity: 0.2\n",
+       "    diffusivity: 0.2\n    boundaries: [{region: left, condition: inflow, value: 1}]\n",
+       {"scene.yaml:23:44: species[1].boundaries[0].condition: condition 'inflow' applies to "
+        "stochastic species only ('B' is deterministic"}},
+      {"inflow_needs_box_or_channel",
+       "condition: dirichlet, value: 4}",
+       "condition: inflow, value: 4}",
+       {"species[0].boundaries[0].region: condition 'inflow' needs a region of shape box or "
+        "channel"},
+       "shape: box, lower: [0.0], upper: [0.0]}",
+       "shape: sphere, center: [0.0], radius: 0.1}"},
       {"unknown_condition",
        "condition: dirichlet",
        "condition: dirichlett",

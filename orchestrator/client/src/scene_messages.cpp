@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "sadr/wire/convert.hpp"
@@ -19,6 +20,7 @@ void to_proto(const Species& in, common::v1::Species& out, std::set<std::string>
   out.set_stochastic(in.stochastic);
   out.set_diffusivity(in.diffusivity);
   for (const auto& b : in.boundaries) {
+    if (b.condition == BoundaryCondition::kInflow) continue;  // not a wall: make_ssa_init
     auto* w = out.add_walls();
     w->set_region(b.region);
     w->set_value(b.value);
@@ -34,6 +36,8 @@ void to_proto(const Species& in, common::v1::Species& out, std::set<std::string>
         break;
       case BoundaryCondition::kFree:
         w->set_condition(common::v1::WALL_CONDITION_FREE);
+        break;
+      case BoundaryCondition::kInflow:
         break;
     }
     if (!b.region.empty()) regions_used.insert(b.region);
@@ -68,6 +72,25 @@ void add_regions(const Scene& scene, const std::set<std::string>& used, Repeated
     auto* m = out->Add();
     m->set_name(name);
     m->mutable_particles()->Assign(r->particles.begin(), r->particles.end());
+  }
+}
+
+/// The inflow buffers of species `s` as boxes (a channel is unbounded across its axis).
+void add_inflows(const Scene& scene, const Species& s, ssa::v1::SsaModel& m) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (const auto& b : s.boundaries) {
+    if (b.condition != BoundaryCondition::kInflow) continue;
+    const Region* r = scene.find_region(b.region);
+    if (!r) throw InvalidArgument("inflow of '" + s.name + "': unknown region '" + b.region + "'");
+    auto* in = m.add_inflows();
+    in->set_species(s.name);
+    in->set_concentration(b.value);
+    for (int a = 0; a < scene.particles.dimension; ++a) {
+      const bool box = r->shape == RegionShape::kBox;
+      const bool across = r->shape == RegionShape::kChannel && r->axis == a;
+      in->add_lower(box ? r->lower[a] : across ? r->axis_lower : -kInf);
+      in->add_upper(box ? r->upper[a] : across ? r->axis_upper : kInf);
+    }
   }
 }
 
@@ -130,6 +153,7 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
   for (const auto& s : scene.species) {
     if (!s.stochastic || !contains(plan.ssa_species, s.name)) continue;
     to_proto(s, *m->add_species(), regions_used);
+    add_inflows(scene, s, *m);
     auto* c = init.mutable_counts()->add_species();
     c->set_name(s.name);
     auto* counts = c->mutable_counts();

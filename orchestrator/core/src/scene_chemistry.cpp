@@ -17,7 +17,8 @@ constexpr std::array<std::string_view, 5> kSpeciesKeys{"name", "stochastic", "di
                                                        "initial", "boundaries"};
 constexpr std::array<std::string_view, 3> kInitialKeys{"region", "count", "concentration"};
 constexpr std::array<std::string_view, 4> kBoundaryKeys{"region", "condition", "value", "count"};
-constexpr std::array<std::string_view, 4> kConditions{"dirichlet", "neumann", "none", "free"};
+constexpr std::array<std::string_view, 5> kConditions{"dirichlet", "neumann", "none", "free",
+                                                      "inflow"};
 constexpr std::array<std::string_view, 8> kReactionKeys{
     "name", "equation", "reactants", "products", "rate", "reverse_rate", "regions", "kinds"};
 constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
@@ -84,12 +85,24 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
     b.condition = *cond == "dirichlet" ? BoundaryCondition::kDirichlet
                   : *cond == "neumann" ? BoundaryCondition::kNeumann
                   : *cond == "free"    ? BoundaryCondition::kFree
+                  : *cond == "inflow"  ? BoundaryCondition::kInflow
                                        : BoundaryCondition::kNone;
+    const bool inflow = b.condition == BoundaryCondition::kInflow;
+    const bool held = b.condition == BoundaryCondition::kDirichlet || inflow;
+    if (inflow && !sp.stochastic) {
+      r.error(YamlReader::child(f, "condition"),
+              "condition 'inflow' applies to stochastic species only ('" + sp.name +
+                  "' is deterministic; deterministic inflow buffers are not implemented)");
+    }
+    if (inflow && rg && rg->shape != RegionShape::kBox && rg->shape != RegionShape::kChannel) {
+      r.error(rf, "condition 'inflow' needs a region of shape box or channel ('" + rg->name +
+                      "' is a " + std::string(to_string(rg->shape)) + ")");
+    }
     const Field count_field = YamlReader::child(f, "count");
     std::optional<double> count;
     if (YamlReader::present(count_field)) {
-      if (b.condition != BoundaryCondition::kDirichlet) {
-        r.error(count_field, "'count' applies to condition 'dirichlet' only");
+      if (!held) {
+        r.error(count_field, "'count' applies to conditions 'dirichlet' and 'inflow' only");
       } else if (YamlReader::present(YamlReader::child(f, "value"))) {
         r.error(count_field,
                 "give either 'value' (concentration) or 'count' (molecules per "
@@ -105,7 +118,7 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
         double volume = 0.0;
         bool uniform = true;
         for (const std::uint32_t i : rg->particles) {
-          if (p.kind(i) == ParticleKind::kFluid) continue;
+          if (p.kind(i) == ParticleKind::kFluid && !inflow) continue;
           if (volume == 0.0) volume = p.volume(i);
           uniform = uniform && std::abs(p.volume(i) - volume) <= 1e-12 * volume;
         }
@@ -116,7 +129,7 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
           b.value = *count / volume;
         }
       }
-    } else if (b.condition == BoundaryCondition::kDirichlet) {
+    } else if (held) {
       b.value = r.number(f, "value", Bound::kNonNegative, "molecules/length^d", true).value_or(0);
     } else if (b.condition == BoundaryCondition::kNeumann) {
       b.value =
@@ -127,6 +140,10 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
     }
     if (!rg) continue;
     b.region = rg->name == kAllRegion ? std::string() : rg->name;
+    if (inflow) {  // geometric, re-evaluated on the moving particles by ssa_service
+      sp.boundaries.push_back(b);
+      continue;
+    }
     if (ctx.particles_ok) {
       std::size_t fluid = 0;
       for (const std::uint32_t i : rg->particles) {

@@ -171,6 +171,8 @@ std::string_view to_string(BoundaryCondition condition) {
       return "neumann";
     case BoundaryCondition::kFree:
       return "free";
+    case BoundaryCondition::kInflow:
+      return "inflow";
   }
   return "unknown";
 }

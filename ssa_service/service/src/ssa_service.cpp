@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "sadr/common/log.hpp"
+#include "sadr/ssa/inflow.hpp"
 #include "sadr/ssa/nsm_solver.hpp"
 #include "sadr/wire/convert.hpp"
 
@@ -81,7 +82,10 @@ void SsaServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
     }
     solver->set_counts(s, std::span<const std::int64_t>(f.counts().data(), f.counts_size()));
   }
+  auto inflows = inflows_from_proto(req.model(), particles.dimension, names);
+  apply_inflows(*solver, inflows);
   solver_ = std::move(solver);
+  inflows_ = std::move(inflows);
   species_names_ = std::move(names);
   seed_ = req.model().seed();
   have_last_ = false;
@@ -101,6 +105,7 @@ void SsaServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply&
   if (req.has_particles()) moved = wire::from_proto(req.particles(), "advance.particles");
   const auto t0 = std::chrono::steady_clock::now();
   if (moved) rebuilt = s.update_graph(*moved);
+  apply_inflows(s, inflows_);
   const auto t1 = std::chrono::steady_clock::now();
   if (!(req.t_end() >= s.time())) {
     throw InvalidArgument("advance.t_end = " + format_value(req.t_end()) +

@@ -7,12 +7,15 @@
 /// Restore needs a prior Init with the same model (the snapshot checks it).
 /// Advance is idempotent on (run_id, step_index): a resent request gets the
 /// stored reply without stepping again (safe retries after a timeout).
+/// Inflow buffers (inflow.hpp) are re-imposed at Init and at the start of
+/// every Advance, after the graph update.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "sadr/ssa/inflow.hpp"
 #include "sadr/ssa/model.hpp"
 #include "sadr/ssa/v1/ssa_service.pb.h"
 #include "sadr/wire/typed_handler.hpp"
@@ -45,6 +48,7 @@ class SsaServiceHandler : public wire::TypedHandler<v1::SsaRequest, v1::SsaReply
 
   std::unique_ptr<NsmSolver> solver_;
   std::vector<std::string> species_names_;
+  std::vector<InflowBuffer> inflows_;  ///< re-imposed at Init and every Advance
   std::uint64_t seed_ = 0;
   // Idempotent advance: the last (run_id, step_index) and its reply.
   std::string last_run_id_;
