@@ -4,11 +4,13 @@
 
 #include "commands.hpp"
 #include "sadr/common/log.hpp"
+#include "sadr/common/openmp_env.hpp"
 #include "sadr/common/version.hpp"
 
 using namespace sadr::orchestrator;
 
 int main(int argc, char** argv) {
+  sadr::ensure_passive_openmp_wait(argv);  // see openmp_env.hpp
   CLI::App app{
       std::string("sadr ") + sadr::kVersion +
       ": stochastic advection-diffusion-reaction in particle fluids.\n"

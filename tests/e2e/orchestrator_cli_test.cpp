@@ -89,6 +89,23 @@ TEST(OrchestratorCli, ProcessesEmbeddedAndRemoteGiveIdenticalFrames) {
   if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
 }
 
+TEST(OrchestratorCli, OpenMpWaitsArePassiveUnlessTheUserChose) {
+  // sadr re-executes itself with OMP_WAIT_POLICY=passive when it is unset
+  // (common/openmp_env.hpp); the run manifest records what the run saw.
+  const fs::path d = scratch("omp");
+  const fs::path scene = write_scene(d, annihilation_scene(0.02, "[0.02]", 0));
+  const std::string run_cmd = bin("sadr") + " run " + scene.string() + " -q --embedded -o ";
+  ASSERT_EQ(run("env -u OMP_WAIT_POLICY " + run_cmd + (d / "a").string(), d / "a.log"), 0)
+      << read_file(d / "a.log");
+  EXPECT_NE(read_file(d / "a" / "run.json").find("\"OMP_WAIT_POLICY\": \"passive\""),
+            std::string::npos);
+  ASSERT_EQ(run("OMP_WAIT_POLICY=active " + run_cmd + (d / "b").string(), d / "b.log"), 0)
+      << read_file(d / "b.log");
+  EXPECT_NE(read_file(d / "b" / "run.json").find("\"OMP_WAIT_POLICY\": \"active\""),
+            std::string::npos);
+  if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
+}
+
 TEST(OrchestratorCli, RunHalfThenResumeEqualsFullRun) {
   const fs::path d = scratch("resume");
   const fs::path scene = write_scene(d, annihilation_scene(0.4, "[0.1, 0.2, 0.3, 0.4]", 0.1));

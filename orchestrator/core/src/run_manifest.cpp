@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/orchestrator/run_manifest.hpp"
 
+#include <cstdlib>
+
 #include <ctime>
 
 #include "sadr/common/version.hpp"
@@ -8,7 +10,12 @@
 
 namespace sadr::orchestrator {
 
-RunManifest::RunManifest() : sadr_version(kVersion), protocol_version(kProtocolVersion) {}
+RunManifest::RunManifest() : sadr_version(kVersion), protocol_version(kProtocolVersion) {
+  for (const char* name : {"OMP_NUM_THREADS", "OMP_WAIT_POLICY"}) {
+    const char* value = std::getenv(name);
+    environment[name] = value ? value : "";
+  }
+}
 
 nlohmann::json RunManifest::to_json() const {
   return {{"format", "sadr-run"},
@@ -21,6 +28,7 @@ nlohmann::json RunManifest::to_json() const {
           {"sadr_version", sadr_version},
           {"protocol_version", protocol_version},
           {"mode", mode},
+          {"environment", environment},
           {"started_utc", started_utc},
           {"finished_utc", finished_utc},
           {"status", status},

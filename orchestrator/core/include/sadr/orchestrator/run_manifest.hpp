@@ -23,7 +23,10 @@ struct RunManifest {
   std::string sadr_version;       ///< defaults to sadr::kVersion
   unsigned protocol_version = 0;  ///< defaults to sadr::kProtocolVersion
   std::string mode;               ///< "processes", "embedded", "remote"
-  std::string started_utc;        ///< ISO 8601, e.g. "2026-11-22T03:00:00Z"
+  /// Run-time environment that changes speed, not results: OMP_NUM_THREADS and
+  /// OMP_WAIT_POLICY as this process saw them ("" = unset); filled by RunManifest().
+  std::map<std::string, std::string> environment;
+  std::string started_utc;  ///< ISO 8601, e.g. "2026-11-22T03:00:00Z"
   std::string finished_utc;
   std::string status = "running";           ///< "running", "ok", "failed: <reason>", "interrupted"
   std::uint64_t steps = 0;                  ///< coupling steps completed

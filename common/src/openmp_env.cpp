@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/common/openmp_env.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace sadr {
+
+void ensure_passive_openmp_wait(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;  // the user's choice (or done)
+  if (::setenv("OMP_WAIT_POLICY", "passive", 0) != 0) return;
+  ::execv("/proc/self/exe", argv);
+  // Still here: the re-exec failed. Children inherit the setting; this process
+  // keeps libgomp's default, which costs speed only on busy machines.
+  std::fprintf(stderr, "sadr: note: could not re-execute with OMP_WAIT_POLICY=passive (%s)\n",
+               std::strerror(errno));
+}
+
+}  // namespace sadr
