@@ -13,8 +13,8 @@ namespace sadr::fluid {
 
 namespace {
 constexpr std::uint64_t kMagic = 0x3144504453524441ULL;  // "ADRSSDPD1"-ish tag
-constexpr std::uint32_t kBlobVersion = 1;
-constexpr std::uint32_t kMaxSubsteps = 65535;  // noise key: (step_index << 16) | substep
+constexpr std::uint32_t kBlobVersion = 2;                // 2: + positions of the last list build
+constexpr std::uint32_t kMaxSubsteps = 65535;            // noise key: (step_index << 16) | substep
 
 void check_initial(const FluidModel& model, const ParticleState& s,
                    const std::vector<std::vector<double>>& c) {
@@ -126,6 +126,8 @@ void SdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   species_.apply_dirichlet(y_.c);
   list_ref_x_.clear();
   nlist_ = {};
+  half_ok_ = !morris_ && species_.transported().empty() && !species_.has_reactions() &&
+             std::none_of(wall_.begin(), wall_.end(), [](std::uint8_t w) { return w != 0; });
   time_ = 0;
   initialized_ = true;
 }
@@ -145,11 +147,10 @@ void SdpdBackend::ensure_neighbors(const std::vector<double>& x) {
     }
     rebuild = moved != 0;
   }
-  if (rebuild) {
-    builder_->build(x, nlist_);
-    list_ref_x_ = x;
-  }
+  if (rebuild) rebuild_neighbors(x);
 }
+
+// rebuild_neighbors: sdpd_half_pairs.hpp (with the slabs it assigns)
 
 StabilityLimits SdpdBackend::limits(const Y& y, const Rates& r) const {
   StabilityLimits lim;
@@ -369,7 +370,8 @@ std::size_t SdpdBackend::memory_bytes() const {
   for (const auto& b : scratch_) noise_bytes += b.bytes();
   return yb(y_) + yb(ytmp_) + rb(r0_) + rb(r1_) + vb(nlist_.offsets) + vb(nlist_.indices) +
          vb(list_ref_x_) + vb(wall_) + vb(wall_region_) + vb(wall_depth_) + vb(mass_) + vb(kinds_) +
-         vb(ids_) + vb(pd2_) + vb(inv_nd_) + vb(vol_) + vb(sqrt_inv_nd_) + noise_bytes;
+         vb(ids_) + vb(pd2_) + vb(inv_nd_) + vb(vol_) + vb(sqrt_inv_nd_) + noise_bytes +
+         vb(slab_of_) + vb(slab_start_) + vb(slab_members_) + vb(fsum_);
 }
 
 void SdpdBackend::read_state(ParticleState& out) const {
@@ -422,6 +424,9 @@ std::string SdpdBackend::save() const {
   w.put_vector(y_.rho);
   w.put<std::uint64_t>(y_.c.size());
   for (const auto& c : y_.c) w.put_vector(c);
+  // The half-pair path sums in slab order, and slabs are assigned at list builds: restoring the
+  // list at the same reference positions keeps restarts bit-exact.
+  w.put_vector(list_ref_x_);
   return w.take();
 }
 
@@ -431,9 +436,10 @@ void SdpdBackend::restore(std::string_view blob) {
   if (r.get<std::uint64_t>() != kMagic)
     throw InvalidArgument("restore: not a sadr fluid state blob");
   const auto version = r.get<std::uint32_t>();
-  if (version != kBlobVersion) {
+  if (version != kBlobVersion && version != 1) {
     throw InvalidArgument("restore: blob version " + std::to_string(version) +
-                          " unsupported (this build reads " + std::to_string(kBlobVersion) + ")");
+                          " unsupported (this build reads 1 and " + std::to_string(kBlobVersion) +
+                          ")");
   }
   const std::string backend = r.get_string();
   if (backend != name())
@@ -451,10 +457,17 @@ void SdpdBackend::restore(std::string_view blob) {
     throw InvalidArgument("restore: blob has " + std::to_string(ns) + " species, model has " +
                           std::to_string(y_.c.size()));
   for (std::size_t s = 0; s < ns; ++s) y.c.push_back(r.get_vector<double>(n));
+  std::vector<double> ref;
+  if (version >= 2) {
+    ref = r.get_vector<double>();
+    if (!ref.empty() && ref.size() != 3 * n)
+      throw InvalidArgument("restore: list reference positions have the wrong size");
+  }
   if (!r.at_end()) throw InvalidArgument("restore: trailing bytes in state blob");
   y_ = std::move(y);
   time_ = t;
   list_ref_x_.clear();
+  if (!ref.empty()) rebuild_neighbors(ref);
 }
 
 }  // namespace sadr::fluid

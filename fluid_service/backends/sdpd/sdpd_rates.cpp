@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 /// \file sdpd_rates.cpp
 /// The SDPD pair loop: one gather pass over full neighbour lists evaluating
-/// SdpdMomentumTerm, ContinuityTerm, PairNoise and DiffusionTerm (pair_terms.hpp).
+/// SdpdMomentumTerm, ContinuityTerm, PairNoise and DiffusionTerm (pair_terms.hpp), for systems
+/// with walls, transported species or reactions; bulk fluids take the half-pair path
+/// (sdpd_half_pairs.hpp, each pair once).
 #include <algorithm>
 #include <cmath>
 #include <span>
@@ -9,6 +11,7 @@
 #include "sadr/fluid/pair_noise_batch.hpp"
 #include "sadr/fluid/parallel.hpp"
 #include "sdpd_backend.hpp"
+#include "sdpd_half_pairs.hpp"
 
 namespace sadr::fluid {
 
@@ -64,7 +67,9 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
   };
 
   // Summation density (SPEC eq 19) replaces the integrated one (fluid particles).
-  if (summation) {
+  if (summation && half_ok_) {
+    summation_half<D>(y);
+  } else if (summation) {
 #pragma omp parallel for schedule(static) if (ni > kMinParallel)
     for (std::int64_t ii = 0; ii < ni; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
@@ -114,6 +119,10 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
   pair_params.noise_amp = noise_amp;
   pair_params.noise = noise_on;
 
+  if (half_ok_ && slab_count_ > 0) {  // no walls, species or reactions: each pair once
+    evaluate_half<D>(y, noise_step, out, noise_on, pair_params, c_d);
+    return;
+  }
 #pragma omp parallel if (ni > kMinParallel)
   {
     // Per-thread scratch: a particle's pairs within h as a SIMD block (sdpd_pair_block.hpp);

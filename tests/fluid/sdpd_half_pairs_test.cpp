@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: MIT
+// Property: the half-pair path of the SDPD backend (sdpd_half_pairs.hpp; systems without
+// walls, transported species or reactions) against the full-list gather, and its determinism
+// (thread count, restarts across neighbour-list rebuilds) and momentum conservation.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "fluid_test_scenes.hpp"
+#include "sadr/common/rng.hpp"
+#include "sadr/fluid/pair_noise_batch.hpp"
+#include "sadr/fluid/parallel.hpp"
+#include "sdpd/sdpd_backend.hpp"
+#include "sdpd/sdpd_noise_avx512.hpp"
+#ifdef SADR_HAVE_OPENMP
+#include <omp.h>
+#endif
+
+namespace sadr::fluid {
+namespace {
+
+struct Scene {
+  FluidModel model;
+  ParticleState state;
+};
+
+// Periodic, jittered lattice with a shear wave of amplitude u (large u: list rebuilds).
+Scene box(int dim, int side, double u, double kT) {
+  Scene s;
+  test::LatticeSpec ls;
+  ls.dimension = dim;
+  ls.n = {side, dim > 1 ? side : 1, dim > 2 ? side : 1};
+  s.state = test::make_lattice(ls, s.model.box);
+  rng::Xoshiro256 gen(5, 1);
+  for (std::size_t i = 0; i < s.state.size(); ++i) {
+    for (int a = 0; a < dim; ++a) s.state.positions[3 * i + a] += 0.1 * (gen.uniform() - 0.5);
+    s.state.velocities[3 * i] =
+        u * std::sin(2.0 * M_PI * s.state.positions[3 * i + dim - 1] / side);
+    if (dim > 1)  // across the slabs (last axis) too, so particles change slab
+      s.state.velocities[3 * i + dim - 1] =
+          u * std::cos(2.0 * M_PI * s.state.positions[3 * i] / side);
+    s.state.densities[i] *= 1.0 + 0.01 * (gen.uniform() - 0.5);
+  }
+  s.model.smoothing_length = dim == 3 ? 2.5 : 3.0;
+  s.model.sound_speed = 10.0;
+  s.model.shear_viscosity = 1.0;
+  s.model.temperature = kT;
+  s.model.seed = 99;
+  return s;
+}
+
+class HalfPairs : public ::testing::TestWithParam<int> {};
+
+// A non-transported species does not change the physics and keeps the half path; a
+// deterministic one with zero diffusivity forces the full-list gather: same rates to round-off.
+TEST_P(HalfPairs, RatesMatchFullGatherToRoundOff) {
+  const int dim = GetParam();
+  for (const char* kernel : {"lucy", "wendland_c2"}) {
+    if (dim == 1 && std::string(kernel) != "lucy") continue;
+    for (const DensityMode mode : {DensityMode::kContinuity, DensityMode::kSummation}) {
+      Scene s = box(dim, dim == 3 ? 8 : dim == 2 ? 16 : 64, 0.5, 1.0);
+      s.model.kernel = kernel;
+      s.model.density_mode = mode;
+      SdpdBackend half, full;
+      half.initialize(s.model, s.state, {});
+      s.model.species.push_back({"A", 0.0, true, {}, {}});
+      full.initialize(s.model, s.state, {std::vector<double>(s.state.size(), 1.0)});
+      SdpdBackend::Rates rh, rf;
+      half.evaluate_current(7, rh);
+      full.evaluate_current(7, rf);
+      auto close = [](const std::vector<double>& a, const std::vector<double>& b,
+                      const char* what) {
+        ASSERT_EQ(a.size(), b.size()) << what;
+        double scale = 0, err = 0;
+        for (std::size_t k = 0; k < a.size(); ++k) {
+          scale = std::max(scale, std::fabs(b[k]));
+          err = std::max(err, std::fabs(a[k] - b[k]));
+        }
+        EXPECT_GT(scale, 0.0) << what;
+        EXPECT_LE(err, 1e-12 * scale) << what;
+      };
+      close(rh.acc, rf.acc, "acc");
+      close(rh.acc_noise, rf.acc_noise, "acc_noise");
+      if (mode == DensityMode::kContinuity) close(rh.drho, rf.drho, "drho");
+      EXPECT_NEAR(rh.max_visc_sum, rf.max_visc_sum, 1e-12 * rf.max_visc_sum);
+    }
+  }
+}
+
+TEST_P(HalfPairs, MomentumThreadsAndRestartAcrossListRebuilds) {
+  const int dim = GetParam();
+  // Above kMinParallel particles so that the slabs really run threaded; u = 3 moves particles
+  // past half the skin within the run, so the list (and the slabs) are rebuilt.
+  const int side = dim == 3 ? 12 : dim == 2 ? 40 : 2000;
+  const Scene s = box(dim, side, 3.0, 1.0);
+  ASSERT_GT(static_cast<std::int64_t>(s.state.size()), kMinParallel);
+  auto run = [&](int threads, bool restart) {
+#ifdef SADR_HAVE_OPENMP
+    omp_set_num_threads(threads);
+#else
+    (void)threads;
+#endif
+    SdpdBackend b;
+    b.initialize(s.model, s.state, {});
+    for (std::uint64_t k = 0; k < 5; ++k) b.advance(k, 0.01);  // list built at step 0 only
+    if (restart) {
+      const std::string blob = b.save();
+      SdpdBackend c;
+      c.initialize(s.model, s.state, {});
+      c.restore(blob);
+      for (std::uint64_t k = 5; k < 16; ++k) c.advance(k, 0.01);
+      ParticleState p;
+      c.read_state(p);
+      return p;
+    }
+    for (std::uint64_t k = 5; k < 16; ++k) b.advance(k, 0.01);
+    ParticleState p;
+    b.read_state(p);
+    return p;
+  };
+#ifdef SADR_HAVE_OPENMP
+  const int max_threads = omp_get_max_threads();
+#else
+  const int max_threads = 1;
+#endif
+  const ParticleState one = run(1, false);
+  const ParticleState two = run(2, false);
+  const ParticleState three = run(3, true);
+#ifdef SADR_HAVE_OPENMP
+  omp_set_num_threads(max_threads);
+#endif
+  EXPECT_EQ(one.positions, two.positions);
+  EXPECT_EQ(one.velocities, two.velocities);
+  EXPECT_EQ(one.densities, two.densities);
+  EXPECT_EQ(one.positions, three.positions);
+  EXPECT_EQ(one.velocities, three.velocities);
+  EXPECT_EQ(one.densities, three.densities);
+  // the run crossed list rebuilds
+  double moved = 0;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    double d[3];
+    for (int a = 0; a < 3; ++a) d[a] = one.positions[3 * i + a] - s.state.positions[3 * i + a];
+    PeriodicBox(s.model.box).minimum_image(d);
+    moved = std::max(moved, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+  }
+  EXPECT_GT(moved, 0.5 * 0.15 * s.model.smoothing_length);
+  double m0[3] = {0, 0, 0}, m1[3] = {0, 0, 0}, scale = 0;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      m0[a] += s.state.masses[i] * s.state.velocities[3 * i + a];
+      m1[a] += one.masses[i] * one.velocities[3 * i + a];
+      scale += one.masses[i] * std::fabs(one.velocities[3 * i + a]);
+    }
+  }
+  for (int a = 0; a < 3; ++a) EXPECT_LT(std::fabs(m1[a] - m0[a]), 1e-13 * scale) << "axis " << a;
+}
+
+INSTANTIATE_TEST_SUITE_P(Dims, HalfPairs, ::testing::Values(1, 2, 3));
+
+TEST(NoiseAvx512, SameNumbersAsCoreBatch) {
+  if (!noise_avx512_available()) GTEST_SKIP() << "no AVX-512 on this CPU (or not a GCC x86 build)";
+  rng::Xoshiro256 gen(11, 2);
+  for (const NoiseDistribution dist : {NoiseDistribution::kGaussian, NoiseDistribution::kUniform}) {
+    for (std::size_t n : {1u, 7u, 16u, 17u, 63u, 64u, 65u, 150u}) {
+      std::vector<std::uint32_t> js(n);
+      for (auto& j : js) j = static_cast<std::uint32_t>(gen.uniform() * 4e9);
+      const auto i = static_cast<std::uint32_t>(gen.uniform() * 4e9);
+      const std::uint64_t step = (std::uint64_t{12345} << 16) | 3;
+      std::vector<float> a[4], b[4];
+      for (int q = 0; q < 4; ++q) {
+        a[q].assign(n, -1.0f);
+        b[q].assign(n, -2.0f);
+      }
+      pair_noise_numbers(0xABCDEF0123ULL, step, i, js.data(), n, dist, a[0].data(), a[1].data(),
+                         a[2].data(), a[3].data());
+      pair_noise_numbers_avx512(0xABCDEF0123ULL, step, i, js.data(), n, dist, b[0].data(),
+                                b[1].data(), b[2].data(), b[3].data());
+      for (int q = 0; q < 4; ++q) EXPECT_EQ(a[q], b[q]) << "n " << n << " word " << q;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sadr::fluid
