@@ -8,7 +8,9 @@
 //   ssa_bench d          2D SPH particle graph (jittered 200^2, h = 3 dx), graph rebuilt
 //                        every coupling step at ~1 event per voxel per step
 //   ssa_bench boost_csr  our CSR vs boost::compressed_sparse_row_graph on the (a) edges
-// Options: --events N (NSM events), --baseline-events N (direct method events).
+// Options: --events N (NSM events), --baseline-events N (direct method events),
+// --n side (lattice side), --move s (scenario d: displacement std dev per axis per step
+// in dx, default 0.01; the graph builder searches again once a particle moved > 0.05 h).
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <cstdio>
 #include <cstdlib>
@@ -29,7 +31,8 @@ struct Options {
   std::string scenario = "a";
   double events = 3.0e7;
   double baseline_events = 3000;
-  int n = 0;  // lattice side override (0 = scenario default)
+  int n = 0;           // lattice side override (0 = scenario default)
+  double move = 0.01;  // scenario d: displacement per axis per step, std dev [dx]
   std::string command;
 };
 
@@ -192,7 +195,7 @@ int sph_scenario(const Options& o) {
   const double a0 = total_rate(s);
   const double tau = static_cast<double>(nv) / a0;  // ~1 event per voxel per step
   std::mt19937_64 gen(5);
-  std::normal_distribution<double> g(0.0, 0.01 * dx);
+  std::normal_distribution<double> g(0.0, o.move * dx);
   const int steps = 40;
   double rebuild_cpu = 0, event_cpu = 0;
   std::uint64_t fired_total = 0;
@@ -228,6 +231,7 @@ int sph_scenario(const Options& o) {
   j.num("voxels", static_cast<double>(nv));
   j.num("neighbours_per_voxel", static_cast<double>(s.graph().edge_count()) / nv);
   j.num("steps", steps);
+  j.num("move_dx_per_axis_per_step", o.move);
   j.num("events", static_cast<double>(fired_total));
   j.num("events_per_voxel_per_step", static_cast<double>(fired_total) / (steps * nv));
   j.num("event_cpu_s", event_cpu);
@@ -235,6 +239,9 @@ int sph_scenario(const Options& o) {
   j.num("ns_per_event", ns_event);
   j.num("events_per_s", 1e9 / ns_event);
   j.num("rebuild_ns_per_voxel", rebuild_ns);
+  j.num("neighbour_searches", static_cast<double>(s.state().graph_builder().searches()));
+  j.num("candidates_per_voxel",
+        static_cast<double>(s.state().graph_builder().candidate_count()) / nv);
   j.num("coupled_step_ns_per_voxel", step_ns);
   j.num("direct_baseline_events", static_cast<double>(dfired));
   j.num("direct_baseline_ns_per_event", d_ns);
@@ -332,6 +339,8 @@ int main(int argc, char** argv) {
       o.events = std::atof(argv[++k]);
     } else if (a == "--n" && k + 1 < argc) {
       o.n = std::atoi(argv[++k]);
+    } else if (a == "--move" && k + 1 < argc) {
+      o.move = std::atof(argv[++k]);
     } else if (a == "--baseline-events" && k + 1 < argc) {
       o.baseline_events = std::atof(argv[++k]);
     } else {

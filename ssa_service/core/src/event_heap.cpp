@@ -2,6 +2,7 @@
 #include "sadr/ssa/event_heap.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <string>
 
 #include "sadr/common/status.hpp"
@@ -15,12 +16,17 @@ void EventHeap4::allocate(std::size_t n) {
   }
   n_ = n;
   pos_.resize(n);
+  // Sentinels (sift_down() reads four children slots of every internal node).
+  for (std::size_t k = n; k < n + 4; ++k) {
+    at(k) =
+        Entry{std::numeric_limits<double>::infinity(), std::numeric_limits<std::uint32_t>::max()};
+  }
 }
 
 EventHeap4& EventHeap4::operator=(const EventHeap4& other) {
   if (this == &other) return *this;
   allocate(other.n_);
-  if (n_ > 0) std::copy(other.data_.get(), other.data_.get() + n_ + kOffset, data_.get());
+  if (n_ > 0) std::copy(other.data_.get(), other.data_.get() + n_ + kOffset + 4, data_.get());
   pos_ = other.pos_;
   return *this;
 }

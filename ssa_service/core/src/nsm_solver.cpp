@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "exponential.hpp"
 #include "sadr/common/status.hpp"
 
 namespace sadr::ssa {
@@ -33,7 +34,7 @@ void NsmSolver::rebuild_queue() {
   for (std::size_t i = 0; i < n; ++i) {
     const double a = state_.total_rate(static_cast<std::uint32_t>(i));
     state_.cached_rate(static_cast<std::uint32_t>(i)) = a;
-    times[i] = a > 0 ? time_ + rng_.exponential() / a : kInf;
+    times[i] = a > 0 ? time_ + detail::exponential(rng_) / a : kInf;
   }
   heap_.assign(times);
 }
@@ -62,7 +63,7 @@ void NsmSolver::advance(double t_end) {
     ++fired;
     const double ai = state_.total_rate(i);
     state_.cached_rate(i) = ai;
-    heap_.update_top(ai > 0 ? t + rng_.exponential() / ai : kInf);
+    heap_.update_top(ai > 0 ? t + detail::exponential(rng_) / ai : kInf);
     // Memory-level parallelism: start loading the next event's voxel record,
     // edges and counts now, so those misses overlap with the update of j.
     state_.prefetch(heap_.top().voxel);
@@ -76,7 +77,7 @@ void NsmSolver::advance(double t_end) {
         // Gibson-Bruck rescaling reuses the pending draw; a voxel that was
         // idle (a_old = 0, tau = inf) gets a fresh one.
         tj = (a_old > 0 && tau < kInf) ? t + (a_old / a_new) * (tau - t)
-                                       : t + rng_.exponential() / a_new;
+                                       : t + detail::exponential(rng_) / a_new;
       }
       heap_.update(j, tj);
     }

@@ -10,10 +10,6 @@
 
 namespace sadr::ssa {
 
-namespace {
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-}  // namespace
-
 RdmeState::RdmeState(Model model) : model_(std::move(model)) {
   model_.validate();
   const std::size_t ns = model_.species.size();
@@ -73,7 +69,7 @@ bool RdmeState::update_graph(const ParticleState& particles) {
   for (std::size_t k = 0; k < model_.free_walls.size(); ++k) {
     check_walls("free_walls", k, model_.free_walls[k].voxels);
   }
-  DiffusionGraph::build_into(graph_, model_, particles);  // validates before writing
+  builder_.build(graph_, model_, particles);  // validates before writing
   table_ = ReactionTable::build(model_, graph_);
   n_ = graph_.size();
   voxels_.resize(n_);
@@ -262,78 +258,6 @@ std::uint32_t RdmeState::apply_jump(int s, std::uint32_t i, std::uint32_t j) {
   if (fixed(s, j)) return kNoVoxel;  // absorbed by the reservoir
   ++counts_[s * n_ + j];
   return j;
-}
-
-std::uint32_t RdmeState::free_edge(int s, std::uint32_t i, double v) const {
-  // The usable out-edge where the cumulative weight first exceeds v; the last
-  // usable one when round-off leaves v beyond the sum.
-  std::uint32_t last = kNoVoxel;
-  for (std::uint32_t k = voxels_[i].begin; k < voxels_[i].end; ++k) {
-    if (!uses_edge(s, i, k)) continue;
-    last = k;
-    v -= graph_.edges[k].weight;
-    if (v < 0) break;
-  }
-  if (last == kNoVoxel) {
-    throw Error(StatusCode::kInternal, "RdmeState::fire: voxel " + std::to_string(i) +
-                                           " has no usable edge for species " + std::to_string(s));
-  }
-  return last;
-}
-
-std::uint32_t RdmeState::fire(std::uint32_t i, double u) {
-  // Last channel with a positive propensity: the fallback when round-off puts
-  // u at or beyond the recomputed sum.
-  int last_kind = -1;  // 0 reaction, 1 diffusion
-  std::size_t last_index = 0;
-  double last_p = 0;
-  if (voxels_[i].active) {
-    for (std::size_t r = 0; r < table_.reaction_count(); ++r) {
-      const double p = table_.propensity(r, i, counts_.data(), n_);
-      if (u < p) {
-        apply_reaction(r, i);
-        return kNoVoxel;
-      }
-      u -= p;
-      if (p > 0) last_kind = 0, last_index = r, last_p = p;
-    }
-  }
-  for (int s : diffusing_) {
-    const std::int64_t x = counts_[s * n_ + i];
-    if (x == 0) continue;
-    const double per_weight = kappa_[s] * static_cast<double>(x);
-    const double p = per_weight * jump_weight_sum(s, i);
-    if (p <= 0) continue;
-    if (u < p) {
-      // Neighbour by the cumulative weights: the residual of the same uniform.
-      double v = u / per_weight;
-      const std::uint32_t end = edge_end(s, i);
-      std::uint32_t k = voxels_[i].begin;
-      if (has_free_walls(s)) return apply_jump(s, i, graph_.edges[free_edge(s, i, v)].target);
-      for (; k + 1 < end; ++k) {
-        v -= graph_.edges[k].weight;
-        if (v < 0) break;
-      }
-      return apply_jump(s, i, graph_.edges[k].target);
-    }
-    u -= p;
-    last_kind = 1, last_index = static_cast<std::size_t>(s), last_p = p;
-  }
-  if (last_kind == 0) {
-    apply_reaction(last_index, i);
-    return kNoVoxel;
-  }
-  if (last_kind == 1) {
-    const int s = static_cast<int>(last_index);
-    if (has_free_walls(s)) {
-      return apply_jump(s, i, graph_.edges[free_edge(s, i, kInfinity)].target);
-    }
-    const std::uint32_t end = edge_end(s, i);
-    return apply_jump(s, i, graph_.edges[end - 1].target);
-  }
-  (void)last_p;
-  throw Error(StatusCode::kInternal,
-              "RdmeState::fire: voxel " + std::to_string(i) + " has zero total rate");
 }
 
 }  // namespace sadr::ssa

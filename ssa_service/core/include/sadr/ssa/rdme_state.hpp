@@ -26,6 +26,7 @@
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/ssa/diffusion_graph.hpp"
+#include "sadr/ssa/graph_builder.hpp"
 #include "sadr/ssa/model.hpp"
 #include "sadr/ssa/reaction_table.hpp"
 
@@ -43,6 +44,8 @@ class RdmeState {
   [[nodiscard]] std::size_t voxel_count() const { return graph_.size(); }
   [[nodiscard]] int species_count() const { return static_cast<int>(model_.species.size()); }
   [[nodiscard]] const DiffusionGraph& graph() const { return graph_; }
+  /// The per-step graph builder (candidate list; its counters for tests and benchmarks).
+  [[nodiscard]] const GraphBuilder& graph_builder() const { return builder_; }
   [[nodiscard]] const ReactionTable& reactions() const { return table_; }
   /// The particle arrays the current graph was built from.
   [[nodiscard]] const ParticleState& graph_inputs() const { return inputs_; }
@@ -173,6 +176,13 @@ class RdmeState {
   };
   static_assert(sizeof(VoxelRecord) == 32);
 
+  /// fire() when the model has no wall particles (rdme_fire.cpp).
+  std::uint32_t fire_open(std::uint32_t i, double u);
+  void apply_reaction_open(std::size_t r, std::uint32_t i) {
+    for (const auto& [s, delta] : table_.reaction(r).change) {
+      counts_[static_cast<std::size_t>(s) * n_ + i] += delta;
+    }
+  }
   void assign_reservoir_concentrations();
   void assign_free_walls();
   /// Out-edge of i picked by the residual v for a species with free walls.
@@ -181,6 +191,7 @@ class RdmeState {
 
   Model model_;
   DiffusionGraph graph_;
+  GraphBuilder builder_;
   ReactionTable table_;
   std::vector<VoxelRecord> voxels_;
   ParticleState inputs_;
