@@ -4,8 +4,9 @@
 /// figure is per core) at rho = 4, r_c = r_cc = 1.58, k_B T = 1, dt = 0.01, for ~1e4 and ~1e5
 /// particles and 1, 4, 25 species, next to LAMMPS `pair tdpd` measured on this machine
 /// (233k particle-steps/CPU-s with 1 species, 112k with 4).
-/// Usage: fluid_tdpd_bench [out.json] [--quick] [--small]  (OMP_NUM_THREADS=1: per core)
-///   --quick: 5 timed steps; --small: only the ~1e4-particle configurations.
+/// Usage: fluid_tdpd_bench [out.json] [--quick] [--small] [--uniform]  (OMP_NUM_THREADS=1)
+///   --quick: 5 timed steps; --small: only the ~1e4-particle configurations;
+///   --uniform: FluidModel::noise = kUniform (uniform pair noise of unit variance).
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -26,7 +27,7 @@ struct Result {
   double rate;  ///< particle-steps per CPU-second
 };
 
-Result run(int per_axis, int nspecies, int steps) {
+Result run(int per_axis, int nspecies, int steps, bool uniform) {
   using namespace sadr;
   using namespace sadr::fluid;
   const double a = std::cbrt(0.25);
@@ -39,6 +40,7 @@ Result run(int per_axis, int nspecies, int steps) {
   m.reference_density = 4.0;
   m.temperature = 1.0;
   m.seed = 1;
+  if (uniform) m.noise = NoiseDistribution::kUniform;
   for (int s = 0; s < nspecies; ++s) {
     SpeciesSpec sp;
     sp.name = "S";
@@ -86,12 +88,15 @@ int main(int argc, char** argv) {
   std::string out = "tdpd_bench.json";
   bool quick = false;
   bool small_only = false;
+  bool uniform = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--quick") {
       quick = true;
     } else if (arg == "--small") {
       small_only = true;
+    } else if (arg == "--uniform") {
+      uniform = true;
     } else {
       out = arg;
     }
@@ -102,7 +107,7 @@ int main(int argc, char** argv) {
     if (small_only && per_axis > 22) break;
     for (const int ns : {1, 4, 25}) {
       const int steps = quick ? 5 : (per_axis == 22 ? 100 : 20);
-      res.push_back(run(per_axis, ns, steps));
+      res.push_back(run(per_axis, ns, steps, uniform));
       const auto& r = res.back();
       const double ref = ns == 1 ? lammps[0] : ns == 4 ? lammps[1] : 0.0;
       std::printf(
@@ -119,7 +124,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::fprintf(f,
-               "{\n  \"benchmark\": \"tdpd\",\n  \"units\": \"particle-steps per CPU-second\",\n");
+               "{\n  \"benchmark\": \"tdpd\",\n  \"units\": \"particle-steps per CPU-second\",\n"
+               "  \"noise\": \"%s\",\n",
+               uniform ? "uniform" : "gaussian");
   std::fprintf(
       f, "  \"lammps_pair_tdpd\": {\"species_1\": %.0f, \"species_4\": %.0f},\n  \"runs\": [\n",
       lammps[0], lammps[1]);

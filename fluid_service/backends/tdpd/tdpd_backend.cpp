@@ -30,25 +30,6 @@ std::string num(double v) {
 
 }  // namespace
 
-void TdpdParameters::validate(double r_c) const {
-  std::vector<std::string> bad;
-  auto need = [&](bool ok, const char* field, double v, const char* range) {
-    if (!ok)
-      bad.push_back(std::string("tdpd.") + field + " = " + num(v) + " (allowed " + range + ")");
-  };
-  need(std::isfinite(a) && a >= 0.0, "a", a, ">= 0");
-  need(std::isfinite(gamma) && gamma >= 0.0, "gamma", gamma, ">= 0");
-  need(std::isfinite(s1) && s1 >= 0.0, "s1", s1, ">= 0");
-  need(std::isfinite(r_cc) && r_cc >= 0.0 && r_cc <= r_c, "r_cc", r_cc, "[0, r_c] (0 = r_c)");
-  need(std::isfinite(lambda) && lambda >= 0.0 && lambda <= 1.0, "lambda", lambda, "[0, 1]");
-  need(std::isfinite(skin) && skin >= 0.0 && skin <= 1.0, "skin", skin, "[0, 1] (0 = model)");
-  if (!bad.empty()) {
-    std::string msg = "invalid tDPD parameters:";
-    for (const auto& b : bad) msg += "\n  " + b;
-    throw InvalidArgument(msg);
-  }
-}
-
 double TdpdBackend::fickian_slope_ideal(double rho, double r_cc) {
   // D_F = (rho kappa / (2 d)) int r^2 w_DC dV; d = 3, w_DC = (1 - r/r_cc)^2 -> 2 pi rho r^5/315.
   return 2.0 * std::numbers::pi * rho * std::pow(r_cc, 5) / 315.0;
@@ -70,24 +51,7 @@ void TdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
     check.validate();
   }
   initial.validate();
-  for (const auto& [key, value] : model.backend_parameters) {
-    if (key == "a") {
-      params_.a = value;
-    } else if (key == "gamma") {
-      params_.gamma = value;
-    } else if (key == "s1") {
-      params_.s1 = value;
-    } else if (key == "r_cc") {
-      params_.r_cc = value;
-    } else if (key == "lambda") {
-      params_.lambda = value;
-    } else if (key == "skin") {
-      params_.skin = value;
-    } else {
-      throw InvalidArgument("tdpd: unknown parameter '" + key +
-                            "' (known: a, gamma, s1, r_cc, lambda, skin)");
-    }
-  }
+  params_.apply(model.backend_parameters);
   params_.validate(model.smoothing_length);
   if (initial.dimension != model.box.dimension) {
     throw InvalidArgument("tdpd: initial.dimension = " + std::to_string(initial.dimension) +
@@ -129,6 +93,21 @@ void TdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   for (std::size_t i = 0; i < n_; ++i) wall_[i] = initial.kind(i) == ParticleKind::kWall;
   any_wall_ = std::find(wall_.begin(), wall_.end(), std::uint8_t{1}) != wall_.end();
   rho_valid_ = false;
+  walls_ = tdpd::EffectiveWalls{};
+  if (params_.effective_walls) {
+    walls_.setup(model, params_.a, params_.gamma, r_cc_, model.reference_density);
+  }
+  reflections_ = 0;
+  buffers_ = tdpd::ConcentrationBuffers{};
+  if (params_.buffer_axis >= 0) {
+    const int k = params_.buffer_axis;
+    if (k >= model.box.dimension || !model.box.periodic[k] || !(params_.inflow_length >= 0.0)) {
+      throw InvalidArgument("tdpd.buffer_axis = " + std::to_string(k) +
+                            " must name a periodic axis (inflow_length >= 0)");
+    }
+    buffers_ = {k, model.box.lo[k], model.box.lo[k] + params_.inflow_length,
+                0.5 * model.box.length(k), params_.inflow_value};
+  }
 
   x_ = initial.positions;
   for (std::size_t i = 0; i < n_; ++i) pbox_.wrap(&x_[3 * i]);
@@ -139,6 +118,7 @@ void TdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   c_.assign(ns, std::vector<double>(n_, 0.0));
   for (std::size_t s = 0; s < concentrations.size(); ++s) c_[s] = concentrations[s];
   species_.apply_dirichlet(c_);
+  if (buffers_.enabled()) buffers_.apply(x_, species_.transported(), c_);
   q_.assign(ns, std::vector<double>(n_, 0.0));
   q_new_ = q_;
   f_.assign(3 * n_, 0.0);
@@ -265,6 +245,8 @@ StepReport TdpdBackend::advance(std::uint64_t step_index, double time_step) {
       pbox_.wrap(&x_[3 * i]);
       for (const int s : transported) c_[s][i] += 0.5 * dt * q_[s][i];
     }
+    if (walls_.enabled()) reflections_ += walls_.reflect(x_, v_, v_pred_, wall_);
+    if (buffers_.enabled()) buffers_.apply(x_, transported, c_);
     evaluate(x_, v_pred_, c_, key, dt, f_new_, q_new_);
 #pragma omp parallel for schedule(static) if (n >= kMinParallel)
     for (std::int64_t ii = 0; ii < n; ++ii) {

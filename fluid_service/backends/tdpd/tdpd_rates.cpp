@@ -69,6 +69,14 @@ void TdpdBackend::evaluate(const std::vector<double>& x, const std::vector<doubl
       evaluate_dim<3>(x, v, c, noise_key, dt, force, flux, flux_only);
       break;
   }
+  if (walls_.enabled()) {
+    if (!flux_only) {
+      walls_.add_forces(x, v, wall_, model_.seed, noise_key & ~(std::uint64_t{1} << 63),
+                        static_cast<std::uint32_t>(noise_key >> 63), dt, force);
+    }
+    walls_.add_fluxes(x, wall_, species_.transported(), kappa_, c, dt, flux);
+  }
+  if (buffers_.enabled()) buffers_.zero_inflow_flux(x, species_.transported(), flux);
 }
 
 template <int D>
@@ -88,6 +96,9 @@ void TdpdBackend::evaluate_dim(const std::vector<double>& x, const std::vector<d
   const double half_s1 = 0.5 * params_.s1;
   // Random force sigma w_R xi / sqrt(dt); sigma = 0 (k_B T = 0) draws nothing.
   const double sigma_dt = sigma_ > 0.0 ? sigma_ / std::sqrt(dt) : 0.0;
+  // FluidModel::noise = kUniform: xi = sqrt(3) (2u - 1), zero mean and unit variance (Groot &
+  // Warren 1997 use uniform random numbers), one Philox draw and no log/sqrt/cos per pair.
+  const bool uniform = model_.noise == NoiseDistribution::kUniform;
   const rng::CounterRng rng{model_.seed};
   const auto sub = static_cast<std::uint32_t>(noise_key >> 63);
   const std::uint64_t key = noise_key & ~(std::uint64_t{1} << 63);
@@ -126,7 +137,11 @@ void TdpdBackend::evaluate_dim(const std::vector<double>& x, const std::vector<d
       ev *= inv_r;
       double fmag = a * w.w_c - gamma * w.w_r * w.w_r * ev;
       if (sigma_dt > 0.0) {
-        fmag += sigma_dt * w.w_r * rng.normal2(rng::Purpose::kPairNoise, key, i, j, sub)[0];
+        const double xi_ij =
+            uniform ? 1.7320508075688772 *
+                          (2.0 * rng.uniform2(rng::Purpose::kPairNoise, key, i, j, sub)[0] - 1.0)
+                    : rng.normal2(rng::Purpose::kPairNoise, key, i, j, sub)[0];
+        fmag += sigma_dt * w.w_r * xi_ij;
       }
       pair_force_[h] = fmag * inv_r;
     }
@@ -159,6 +174,7 @@ void TdpdBackend::evaluate_dim(const std::vector<double>& x, const std::vector<d
       }
       if (w != 0.0 && !wall) {
         const std::uint32_t j = idx[e];
+        if (buffers_.enabled() && buffers_.across_seam(xi, &x[3 * j])) continue;
         for (const int sp : transported) {
           if (any_wall_) {
             const auto role = species_.role(sp, j);

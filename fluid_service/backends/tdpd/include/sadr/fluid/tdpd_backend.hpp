@@ -14,10 +14,13 @@
 /// result does not depend on the thread count. k_B T = 0 draws no random numbers.
 /// Wall particles (kind kWall) are frozen: v = 0, they exert pair forces on fluid particles
 /// and, per species, hold a Dirichlet value (exchange flux) or are excluded (no-flux).
-/// Effective boundary forces/fluxes of li2015 sec. II B are not implemented yet (docs/tdpd.md).
+/// With backend_parameters["effective_walls"] = 1 the faces of every non-periodic axis are
+/// walls without frozen particles: effective boundary forces and concentration fluxes of
+/// li2015 sec. II B and bounce-back reflection (tdpd_walls.hpp, docs/tdpd.md).
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,6 +32,7 @@
 #include "sadr/fluid/periodic_box.hpp"
 #include "sadr/fluid/species_transport.hpp"
 #include "sadr/fluid/stability.hpp"
+#include "sadr/fluid/tdpd_walls.hpp"
 
 namespace sadr::fluid {
 
@@ -46,8 +50,18 @@ struct TdpdParameters {
   /// ~0.02 r_c per step at k_B T = 1, dt = 0.01, so a wider skin than SDPD's pays off.
   /// Narrowed automatically where a periodic axis is shorter than 2 r_c (1 + skin).
   double skin = 0.3;
+  /// 1: walls without frozen particles on the non-periodic faces (li2015 sec. II B).
+  bool effective_walls = false;
+  /// Concentration inflow/outflow buffers (tdpd::ConcentrationBuffers): periodic axis or -1,
+  /// inflow buffer length [length] from box.lo, value held there [C].
+  int buffer_axis = -1;
+  double inflow_length = 0.0;
+  double inflow_value = 0.0;
   /// Throws InvalidArgument naming the field, value and allowed range.
   void validate(double r_c) const;
+  /// Sets the fields named by FluidModel::backend_parameters; throws InvalidArgument for an
+  /// unknown key (tdpd_parameters.cpp).
+  void apply(const std::map<std::string, double>& kv);
 };
 
 class TdpdBackend final : public FluidBackend {
@@ -77,6 +91,10 @@ class TdpdBackend final : public FluidBackend {
   /// li2015 eq 12 (ideal gas g = 1, 3D): D = D_xi + D_F [length^2/time]; D_F = 2 pi rho kappa
   /// r_cc^5 / 315 for s2 = 2. Returned: the Fickian slope dD/dkappa [length^2].
   [[nodiscard]] static double fickian_slope_ideal(double rho, double r_cc);
+  /// The effective walls (empty unless effective_walls; testing aid).
+  [[nodiscard]] const tdpd::EffectiveWalls& effective_walls() const { return walls_; }
+  /// Particles reflected at the effective walls so far.
+  [[nodiscard]] std::uint64_t wall_reflections() const { return reflections_; }
 
  private:
   void evaluate(const std::vector<double>& x, const std::vector<double>& v,
@@ -132,6 +150,9 @@ class TdpdBackend final : public FluidBackend {
   bool rho_valid_ = false;
   bool any_wall_ = false;
   std::vector<std::vector<double>> q_new_;
+  tdpd::EffectiveWalls walls_;
+  tdpd::ConcentrationBuffers buffers_;
+  std::uint64_t reflections_ = 0;
 };
 
 /// Registers "tdpd" (the lead adds one call next to register_builtin_backends).
