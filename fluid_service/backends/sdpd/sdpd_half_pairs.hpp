@@ -27,7 +27,6 @@
 #include "sadr/fluid/pair_noise_batch.hpp"
 #include "sadr/fluid/parallel.hpp"
 #include "sdpd_backend.hpp"
-#include "sdpd_noise_avx512.hpp"
 
 namespace sadr::fluid {
 
@@ -263,10 +262,9 @@ void SdpdBackend::evaluate_half(const Y& y, std::uint64_t noise_step, Rates& out
     const double rho_i = y.rho[i], m_i = mass_[i], vol_i = vol_[i], ind_i = inv_nd_[i];
     sdpd_pair_block<D>(pp, {i, pd2_[i], ind_i, rho_i, noise_on ? sqrt_inv_nd_[i] : 0.0}, m, b);
     if (noise_on) {
-      // the same numbers; 16 lanes where AVX-512 exists (core's clones stop at 8)
-      auto* gen = noise_avx512_available() ? &pair_noise_numbers_avx512 : &pair_noise_numbers;
-      gen(model_.seed, noise_step, i, b.j.data(), m, model_.noise, sc.z[0].data(), sc.z[1].data(),
-          sc.z[2].data(), sc.z[3].data());
+      // core's clones: avx512f (16 lanes) / avx2 / default, the same bits on each
+      pair_noise_numbers(model_.seed, noise_step, i, b.j.data(), m, model_.noise, sc.z[0].data(),
+                         sc.z[1].data(), sc.z[2].data(), sc.z[3].data());
     }
     half_side_terms<D>(b, sc.z, m, continuity, noise_on, {m_i, vol_i, rho_i, two_dhc0, eps},
                        sc.side);
