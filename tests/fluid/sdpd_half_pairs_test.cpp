@@ -123,9 +123,9 @@ TEST_P(HalfPairs, MomentumThreadsAndRestartAcrossListRebuilds) {
     return p;
   };
 #ifdef SADR_HAVE_OPENMP
-  const int max_threads = omp_get_max_threads();
+  [[maybe_unused]] const int max_threads = omp_get_max_threads();
 #else
-  const int max_threads = 1;
+  [[maybe_unused]] const int max_threads = 1;
 #endif
   const ParticleState one = run(1, false);
   const ParticleState two = run(2, false);

@@ -149,7 +149,7 @@ SADR_SIDE_CLONES void half_side_terms(const SdpdPairBlock& b,
 
 template <class PerParticle>
 void SdpdBackend::slab_phases(PerParticle&& per_particle) {
-  const auto ni = static_cast<std::int64_t>(mass_.size());
+  [[maybe_unused]] const auto ni = static_cast<std::int64_t>(mass_.size());
   constexpr std::uint32_t colours = kSlabReach + 1;
   // (the summation-density pass runs before evaluate_dim sizes the scratch; UBSan found it)
   if (scratch_.size() < static_cast<std::size_t>(max_threads()))
