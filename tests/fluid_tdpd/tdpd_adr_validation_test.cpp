@@ -22,6 +22,7 @@
 
 #include "sadr/common/rng.hpp"
 #include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd_lattice.hpp"
 
 #ifndef TDPD_REF_DIR
 #define TDPD_REF_DIR "."
@@ -63,26 +64,10 @@ TEST(TdpdAdrValidation, PoiseuilleAgainstFiniteVolume) {
                           {WallCondition::Type::kDirichlet, 1.0}};
     model.species.push_back(sp);
   }
-  const std::size_t n = static_cast<std::size_t>(kNx) * kNy * kNz;
   ParticleState st;
-  st.dimension = 3;
-  st.resize(n, true);
-  const rng::CounterRng rng{model.seed};
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t c[3] = {i % kNx, (i / kNx) % kNy, i / (static_cast<std::size_t>(kNx) * kNy)};
-    const auto u =
-        rng.uniform2(rng::Purpose::kInitialCondition, 0, static_cast<std::uint32_t>(i), 0);
-    const auto w =
-        rng.uniform2(rng::Purpose::kInitialCondition, 1, static_cast<std::uint32_t>(i), 0);
-    const auto g1 =
-        rng.normal2(rng::Purpose::kInitialCondition, 2, static_cast<std::uint32_t>(i), 0);
-    const auto g2 =
-        rng.normal2(rng::Purpose::kInitialCondition, 3, static_cast<std::uint32_t>(i), 0);
-    const double jj[3] = {u[0], u[1], w[0]}, vv[3] = {g1[0], g1[1], g2[0]};
-    for (int a = 0; a < 3; ++a) {
-      st.positions[3 * i + a] = (static_cast<double>(c[a]) + 0.2 + 0.6 * jj[a]) * kSpacing;
-      st.velocities[3 * i + a] = vv[a];
-    }
+  test::fill_jittered_lattice(st, kNx, kNy, kNz, kSpacing, model.seed, /*thermal=*/true);
+  const std::size_t n = st.size();
+  for (std::size_t i = 0; i < n; ++i) {  // plus the start-up parabola
     const double y = st.positions[3 * i + 1];
     st.velocities[3 * i] += 4.0 * kU * y * (h - y) / (h * h);
   }

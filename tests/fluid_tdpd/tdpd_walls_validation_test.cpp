@@ -23,6 +23,7 @@
 
 #include "sadr/common/rng.hpp"
 #include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd_lattice.hpp"
 
 namespace sadr::fluid {
 namespace {
@@ -50,29 +51,9 @@ struct Channel {
     sp.name = "C";
     sp.diffusivity = kappa;
     model.species.push_back(sp);
-    const std::size_t n = static_cast<std::size_t>(nx) * ny * ny;
-    state.dimension = 3;
-    state.resize(n, true);
-    const rng::CounterRng rng{seed};
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t c[3] = {i % nx, (i / nx) % ny, i / (static_cast<std::size_t>(nx) * ny)};
-      const auto u =
-          rng.uniform2(rng::Purpose::kInitialCondition, 0, static_cast<std::uint32_t>(i), 0);
-      const auto w =
-          rng.uniform2(rng::Purpose::kInitialCondition, 1, static_cast<std::uint32_t>(i), 0);
-      const auto g =
-          rng.normal2(rng::Purpose::kInitialCondition, 2, static_cast<std::uint32_t>(i), 0);
-      const auto g2 =
-          rng.normal2(rng::Purpose::kInitialCondition, 3, static_cast<std::uint32_t>(i), 0);
-      const double jj[3] = {u[0], u[1], w[0]};
-      const double vv[3] = {g[0], g[1], g2[0]};
-      for (int a = 0; a < 3; ++a) {
-        state.positions[3 * i + a] = (static_cast<double>(c[a]) + 0.2 + 0.6 * jj[a]) * kSpacing;
-        state.velocities[3 * i + a] = vv[a];
-      }
-      state.densities[i] = 4.0;
-      state.masses[i] = 1.0;
-    }
+    test::fill_jittered_lattice(state, nx, ny, ny, kSpacing, seed, /*thermal=*/true);
+    state.densities.assign(state.size(), 4.0);
+    state.masses.assign(state.size(), 1.0);
   }
   /// Runs `t` time units with no-flux walls and takes the positions/velocities as the start.
   void thermalise(double t) {
