@@ -75,6 +75,62 @@ TEST(WireConvert, InvalidStateIsRefusedNamingTheField) {
   EXPECT_THROW(from_proto(p, "x"), InvalidArgument);
 }
 
+// The per-step geometry (Advance(return_state) -> ssa Advance) leaves kinds, ids and
+// velocities out; the reader takes kinds and ids from the previous state.
+TEST(WireConvert, GeometryRoundTripKeepsKindsAndIdsOfThePreviousState) {
+  const ParticleState previous = sample(33);
+  ParticleState moved = previous;
+  for (double& x : moved.positions) x += 0.25;
+  for (double& r : moved.densities) r *= 1.5;
+  common::v1::ParticleState p;
+  geometry_to_proto(moved, p);
+  EXPECT_EQ(p.kinds_size(), 0);
+  EXPECT_EQ(p.ids_size(), 0);
+  EXPECT_EQ(p.velocities_size(), 0);
+  std::string bytes;
+  ASSERT_TRUE(p.SerializeToString(&bytes));
+  common::v1::ParticleState q;
+  ASSERT_TRUE(q.ParseFromString(bytes));
+  ParticleState out = sample(2);  // buffers of another size are reused and resized
+  state_from_proto(q, previous, out, "advance.particles");
+  EXPECT_EQ(out.dimension, moved.dimension);
+  EXPECT_EQ(out.positions, moved.positions);
+  EXPECT_EQ(out.densities, moved.densities);
+  EXPECT_EQ(out.masses, moved.masses);
+  EXPECT_EQ(out.kinds, previous.kinds);
+  EXPECT_EQ(out.ids, previous.ids);
+  EXPECT_TRUE(out.velocities.empty());
+  // A full state (with kinds) is read as by from_proto: its own kinds win.
+  ParticleState relabelled = moved;
+  relabelled.kinds.assign(relabelled.size(), ParticleKind::kFluid);
+  to_proto(relabelled, p);
+  state_from_proto(p, previous, out, "x");
+  EXPECT_EQ(out.kinds, relabelled.kinds);
+}
+
+TEST(WireConvert, GeometryWithTheWrongCountOrBadValuesIsRefused) {
+  const ParticleState previous = sample(8);
+  common::v1::ParticleState p;
+  geometry_to_proto(sample(7), p);
+  ParticleState out;
+  try {
+    state_from_proto(p, previous, out, "advance.particles");
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_STREQ(e.what(),
+                 "advance.particles: 7 densities, expected one per particle (8; the particle set "
+                 "cannot change after Init)");
+  }
+  geometry_to_proto(previous, p);
+  p.set_positions(5, std::nan(""));
+  try {
+    state_from_proto(p, previous, out, "advance.particles");
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_STREQ(e.what(), "advance.particles: particle 1: position[2] = nan (must be finite)");
+  }
+}
+
 TEST(WireConvert, StatusAndBoxRoundTrip) {
   const Status s{StatusCode::kNumericalFailure, "NaN", {{"particle", "7"}, {"field", "rho"}}};
   common::v1::Status p;

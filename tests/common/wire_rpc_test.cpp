@@ -22,9 +22,9 @@ class EchoHandler : public RequestHandler {
  public:
   std::string_view request_type() const override { return "sadr.common.v1.Snapshot"; }
   std::string_view reply_type() const override { return "sadr.common.v1.Snapshot"; }
-  std::string handle(const std::string& body, bool& shutdown) override {
+  std::string handle(std::string_view body, bool& shutdown) override {
     common::v1::Snapshot s;
-    s.ParseFromString(body);
+    s.ParseFromArray(body.data(), static_cast<int>(body.size()));
     std::string b = s.blob();
     std::reverse(b.begin(), b.end());
     s.set_blob(b);

@@ -105,6 +105,42 @@ ParticleState from_proto(const common::v1::ParticleState& in, std::string_view w
   return s;
 }
 
+void geometry_to_proto(const ParticleState& in, common::v1::ParticleState& out) {
+  out.set_dimension(static_cast<std::uint32_t>(in.dimension));
+  out.mutable_positions()->Assign(in.positions.begin(), in.positions.end());
+  out.mutable_densities()->Assign(in.densities.begin(), in.densities.end());
+  out.mutable_masses()->Assign(in.masses.begin(), in.masses.end());
+  out.clear_velocities();
+  out.clear_kinds();
+  out.clear_ids();
+}
+
+void state_from_proto(const common::v1::ParticleState& in, const ParticleState& previous,
+                      ParticleState& out, std::string_view where) {
+  if (in.kinds_size() > 0 || in.ids_size() > 0) {
+    out = from_proto(in, where);
+    return;
+  }
+  const std::size_t n = static_cast<std::size_t>(in.densities_size());
+  if (n != previous.size()) {
+    throw InvalidArgument(
+        std::string(where) + ": " + std::to_string(n) + " densities, expected one per particle (" +
+        std::to_string(previous.size()) + "; the particle set cannot change after Init)");
+  }
+  out.dimension = static_cast<int>(in.dimension());
+  out.positions.assign(in.positions().begin(), in.positions().end());
+  out.densities.assign(in.densities().begin(), in.densities().end());
+  out.masses.assign(in.masses().begin(), in.masses().end());
+  out.velocities.assign(in.velocities().begin(), in.velocities().end());
+  out.kinds = previous.kinds;
+  out.ids = previous.ids;
+  try {
+    out.validate();
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(std::string(where) + ": " + e.what());
+  }
+}
+
 RegionMap regions_from_proto(
     const google::protobuf::RepeatedPtrField<common::v1::RegionMembership>& regions,
     std::size_t n_particles, std::string_view where) {

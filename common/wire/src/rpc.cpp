@@ -49,6 +49,20 @@ std::string status_body(StatusCode code, const std::string& message) {
   return to_bytes(s);
 }
 
+/// A ZeroMQ message that takes ownership of `bytes` instead of copying them
+/// (the coupling loop sends ~40 bytes per particle each step: copies add up).
+zmq::message_t adopt(std::string bytes) {
+  if (bytes.empty()) return zmq::message_t();
+  auto* owned = new std::string(std::move(bytes));
+  return zmq::message_t(
+      owned->data(), owned->size(),
+      [](void*, void* hint) { delete static_cast<std::string*>(hint); }, owned);
+}
+
+std::string_view view(const zmq::message_t& m) {
+  return {static_cast<const char*>(m.data()), m.size()};
+}
+
 /// Number of frames up to and including the empty delimiter (or all frames if none).
 std::size_t envelope_size(const std::vector<zmq::message_t>& frames) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -132,7 +146,7 @@ std::pair<std::string, std::string> RpcServer::Impl::dispatch(
                       std::to_string(header.protocol_version()) + " (message " +
                       header.message_type() + ")");
   }
-  const std::string body = frames[payload + 1].to_string();
+  const std::string_view body = view(frames[payload + 1]);  // parsed in place, not copied
   if (header.message_type() == kHandshakeType) {
     common::v1::HandshakeRequest req;
     common::v1::HandshakeReply rep;
@@ -141,7 +155,7 @@ std::pair<std::string, std::string> RpcServer::Impl::dispatch(
     rep.set_server_version(kVersion);
     rep.set_pid(static_cast<std::uint32_t>(getpid()));
     Status st;
-    if (!req.ParseFromString(body)) {
+    if (!req.ParseFromArray(body.data(), static_cast<int>(body.size()))) {
       st = {StatusCode::kInvalidArgument,
             "malformed handshake: the body is not a sadr.common.v1.HandshakeRequest (" +
                 std::to_string(body.size()) + " bytes)",
@@ -209,7 +223,7 @@ void RpcServer::serve(RequestHandler& handler, const std::atomic<bool>* stop) {
     std::vector<zmq::message_t> out;
     for (std::size_t i = 0; i < env; ++i) out.emplace_back(frames[i].data(), frames[i].size());
     out.emplace_back(header.data(), header.size());
-    out.emplace_back(body.data(), body.size());
+    out.push_back(adopt(std::move(body)));
     zmq::send_multipart(s, out);
   }
 }
@@ -218,6 +232,7 @@ void RpcServer::serve(RequestHandler& handler, const std::atomic<bool>* stop) {
 
 struct RpcClient::Impl {
   zmq::socket_t socket{shared_context(), zmq::socket_type::req};
+  std::vector<zmq::message_t> reply;  ///< the last reply's [header][body] frames
 };
 
 RpcClient::RpcClient(std::string endpoint, std::string peer_name, std::chrono::milliseconds timeout)
@@ -239,11 +254,10 @@ RpcClient::RpcClient(std::string endpoint, std::string peer_name, std::chrono::m
 
 RpcClient::~RpcClient() = default;
 
-void RpcClient::call_raw(const std::string& header, const std::string& body,
-                         std::string& reply_header, std::string& reply_body) {
+void RpcClient::exchange(std::string header, std::string body) {
   auto& s = impl_->socket;
   s.send(zmq::buffer(header), zmq::send_flags::sndmore);
-  s.send(zmq::buffer(body), zmq::send_flags::none);
+  s.send(adopt(std::move(body)), zmq::send_flags::none);
   zmq::pollitem_t items[] = {{s.handle(), 0, ZMQ_POLLIN, 0}};
   const auto deadline = std::chrono::steady_clock::now() + timeout_;
   for (;;) {
@@ -263,22 +277,29 @@ void RpcClient::call_raw(const std::string& header, const std::string& body,
     if (items[0].revents & ZMQ_POLLIN) break;
     if (liveness_) liveness_();
   }
-  std::vector<zmq::message_t> frames;
+  auto& frames = impl_->reply;
+  frames.clear();
   (void)zmq::recv_multipart(s, std::back_inserter(frames));
   if (frames.size() != 2) {
     throw Error(StatusCode::kProtocolMismatch, peer_name_ + " sent a reply with " +
                                                    std::to_string(frames.size()) +
                                                    " frames, expected 2 [FrameHeader][body]");
   }
-  reply_header = frames[0].to_string();
-  reply_body = frames[1].to_string();
+}
+
+void RpcClient::call_raw(const std::string& header, const std::string& body,
+                         std::string& reply_header, std::string& reply_body) {
+  exchange(header, body);
+  reply_header = impl_->reply[0].to_string();
+  reply_body = impl_->reply[1].to_string();
 }
 
 void RpcClient::call(const google::protobuf::Message& request, google::protobuf::Message& reply) {
-  std::string rh, rb;
-  call_raw(make_header(request.GetTypeName(), ++sequence_), to_bytes(request), rh, rb);
+  exchange(make_header(request.GetTypeName(), ++sequence_), to_bytes(request));
+  const std::string_view rh = view(impl_->reply[0]);
+  const std::string_view rb = view(impl_->reply[1]);  // parsed in place, not copied
   common::v1::FrameHeader header;
-  if (!header.ParseFromString(rh)) {
+  if (!header.ParseFromArray(rh.data(), static_cast<int>(rh.size()))) {
     throw Error(StatusCode::kProtocolMismatch,
                 peer_name_ + " sent a reply whose header is not a sadr.common.v1.FrameHeader");
   }
@@ -290,7 +311,7 @@ void RpcClient::call(const google::protobuf::Message& request, google::protobuf:
   }
   if (header.message_type() == kStatusType) {
     common::v1::Status st;
-    st.ParseFromString(rb);
+    st.ParseFromArray(rb.data(), static_cast<int>(rb.size()));
     Status s = from_proto(st);
     throw Error(s.code, peer_name_ + " refused the request: " + s.message, s.details);
   }
@@ -299,11 +320,12 @@ void RpcClient::call(const google::protobuf::Message& request, google::protobuf:
                                                    header.message_type() + "', expected '" +
                                                    reply.GetTypeName() + "'");
   }
-  if (!reply.ParseFromString(rb)) {
+  if (!reply.ParseFromArray(rb.data(), static_cast<int>(rb.size()))) {
     throw Error(StatusCode::kProtocolMismatch, peer_name_ + " sent an unparsable " +
                                                    reply.GetTypeName() + " (" +
                                                    std::to_string(rb.size()) + " bytes)");
   }
+  impl_->reply.clear();
 }
 
 common::v1::HandshakeReply RpcClient::handshake(common::v1::ServiceKind expected,

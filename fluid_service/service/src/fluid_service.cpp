@@ -103,8 +103,17 @@ void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
 
 void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply& rep) {
   FluidBackend& b = backend();
+  // The state read after the step (unchanged on a retry, so read again rather
+  // than cached: the reply cache stays small).
+  auto add_state = [&] {
+    if (!req.return_state()) return;
+    b.read_state(scratch_);
+    wire::geometry_to_proto(scratch_, *rep.mutable_particles());
+    rep.mutable_particles()->set_time(b.time());
+  };
   if (have_last_ && req.run_id() == last_run_id_ && req.step_index() == last_step_) {
     rep = last_reply_;
+    add_state();
     return;
   }
   if (!(req.time_step() > 0)) {
@@ -126,6 +135,7 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
   last_step_ = req.step_index();
   last_reply_ = rep;
   have_last_ = true;
+  add_state();
 }
 
 void FluidServiceHandler::get_state(const v1::GetStateRequest& req, v1::GetStateReply& rep) const {

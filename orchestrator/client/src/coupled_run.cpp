@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 
 #include "sadr/common/log.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
@@ -176,7 +177,11 @@ class CoupledRun {
     const std::uint64_t calls = std::max(1, plan_.fluid_calls_per_step);
     std::uint64_t fluid_call = 0;
     bool moved = false;
-    for (const Stage& stage : stages) {
+    // Positions, densities and masses for the SSA, returned by the fluid call
+    // just before an SSA stage (one round trip instead of Advance + GetState).
+    std::optional<common::v1::ParticleState> geometry;
+    for (std::size_t k = 0; k < stages.size(); ++k) {
+      const Stage& stage = stages[k];
       if (stage.op == Operator::kFluid) {
         if (plan_.back_transfer) back_transfer();
         ScopedTimer timer(manifest_.timings_s, "fluid");
@@ -184,9 +189,16 @@ class CoupledRun {
         req.set_run_id(run_id());
         req.set_step_index(step_ * calls + fluid_call++);
         req.set_time_step(stage.length());
-        const auto rep = fluid_->advance(req);
+        req.set_return_state(ssa_ && plan_.particles_to_ssa_each_step && k + 1 < stages.size() &&
+                             stages[k + 1].op != Operator::kFluid);
+        auto rep = fluid_->advance(req);
         manifest_.timings_s["fluid_compute"] += rep.compute_seconds();
         moved = rep.particles_moved() || moved;
+        if (rep.has_particles()) {
+          geometry = std::move(*rep.mutable_particles());
+        } else {
+          geometry.reset();
+        }
       } else {
         ssa::v1::AdvanceRequest req;
         req.set_run_id(run_id());
@@ -194,11 +206,16 @@ class CoupledRun {
         req.set_t_end(stage.end);
         if (moved && plan_.particles_to_ssa_each_step) {
           ScopedTimer timer(manifest_.timings_s, "transfer");
-          fluid::v1::GetStateRequest gs;
-          auto st = fluid_->get_state(gs);
-          *req.mutable_particles() = std::move(*st.mutable_particles());
+          if (geometry) {
+            *req.mutable_particles() = std::move(*geometry);
+          } else {
+            fluid::v1::GetStateRequest gs;
+            auto st = fluid_->get_state(gs);
+            *req.mutable_particles() = std::move(*st.mutable_particles());
+          }
           moved = false;
         }
+        geometry.reset();
         ScopedTimer timer(manifest_.timings_s, "ssa");
         const auto rep = ssa_->advance(req);
         manifest_.timings_s["ssa_graph"] += rep.graph_seconds();

@@ -2,7 +2,6 @@
 #include "sadr/ssa/ssa_service.hpp"
 
 #include <chrono>
-#include <optional>
 
 #include "sadr/common/log.hpp"
 #include "sadr/ssa/inflow.hpp"
@@ -101,10 +100,13 @@ void SsaServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply&
     return;
   }
   bool rebuilt = false;
-  std::optional<ParticleState> moved;  // converted before timing: conversion is transfer cost
-  if (req.has_particles()) moved = wire::from_proto(req.particles(), "advance.particles");
+  // Converted before timing: conversion is transfer cost. Kinds and ids may be
+  // absent (the fluid's per-step geometry): they are those of the current graph.
+  if (req.has_particles()) {
+    wire::state_from_proto(req.particles(), s.state().graph_inputs(), moved_, "advance.particles");
+  }
   const auto t0 = std::chrono::steady_clock::now();
-  if (moved) rebuilt = s.update_graph(*moved);
+  if (req.has_particles()) rebuilt = s.update_graph(moved_);
   apply_inflows(s, inflows_);
   const auto t1 = std::chrono::steady_clock::now();
   if (!(req.t_end() >= s.time())) {

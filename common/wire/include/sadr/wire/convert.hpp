@@ -30,6 +30,16 @@ void to_proto(const ParticleState& in, common::v1::ParticleState& out, bool with
 /// Checks lengths, finiteness, positivity (ParticleState::validate) and kind values.
 ParticleState from_proto(const common::v1::ParticleState& in, std::string_view where);
 
+/// The per-step geometry the SSA needs: dimension, positions, densities, masses
+/// (no velocities, kinds or ids: those never change after Init).
+void geometry_to_proto(const ParticleState& in, common::v1::ParticleState& out);
+/// Reads a state that may leave kinds and ids empty (geometry_to_proto's
+/// output) into `out`, reusing its buffers: absent kinds and ids are taken
+/// from `previous`, which must have the same particle count. A state with
+/// kinds or ids is read as by from_proto. Validates like from_proto.
+void state_from_proto(const common::v1::ParticleState& in, const ParticleState& previous,
+                      ParticleState& out, std::string_view where);
+
 /// Region name -> particle indices.
 using RegionMap = std::map<std::string, std::vector<std::uint32_t>, std::less<>>;
 /// Checks names are unique and indices < n_particles; `where` prefixes errors.

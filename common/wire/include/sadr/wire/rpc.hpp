@@ -43,9 +43,10 @@ class RequestHandler {
   virtual std::string_view request_type() const = 0;
   /// Fully qualified type of the reply body.
   virtual std::string_view reply_type() const = 0;
-  /// Handles one serialized request; returns the serialized reply. Must not
+  /// Handles one serialized request (a view into the received frame: no copy);
+  /// returns the serialized reply, which is sent without another copy. Must not
   /// throw: errors go into the reply's Status. Sets `shutdown` to stop serving.
-  virtual std::string handle(const std::string& body, bool& shutdown) = 0;
+  virtual std::string handle(std::string_view body, bool& shutdown) = 0;
 };
 
 struct ServerOptions {
@@ -103,6 +104,10 @@ class RpcClient {
   void set_liveness_check(std::function<void()> check) { liveness_ = std::move(check); }
 
  private:
+  /// Sends [header][body] (the body without a copy) and waits for the 2-frame
+  /// reply, which stays in impl_ (read in place, not copied) until the next call.
+  void exchange(std::string header, std::string body);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string endpoint_;

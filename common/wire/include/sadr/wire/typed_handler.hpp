@@ -20,10 +20,10 @@ class TypedHandler : public RequestHandler {
   std::string_view request_type() const final { return Request::descriptor()->full_name(); }
   std::string_view reply_type() const final { return Reply::descriptor()->full_name(); }
 
-  std::string handle(const std::string& body, bool& shutdown) final {
+  std::string handle(std::string_view body, bool& shutdown) final {
     Request request;
     Reply reply;
-    if (!request.ParseFromString(body)) {
+    if (!request.ParseFromArray(body.data(), static_cast<int>(body.size()))) {
       to_proto(Status{StatusCode::kInvalidArgument,
                       "malformed request: " + std::to_string(body.size()) +
                           " bytes that do not parse as " + std::string(request_type()),

@@ -49,6 +49,7 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
   std::uint64_t last_step_ = 0;
   bool have_last_ = false;
   v1::AdvanceReply last_reply_;
+  ParticleState scratch_;  ///< state read for Advance(return_state); buffers reused
 };
 
 }  // namespace sadr::fluid

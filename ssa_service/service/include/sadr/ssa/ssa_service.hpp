@@ -49,6 +49,7 @@ class SsaServiceHandler : public wire::TypedHandler<v1::SsaRequest, v1::SsaReply
   std::unique_ptr<NsmSolver> solver_;
   std::vector<std::string> species_names_;
   std::vector<InflowBuffer> inflows_;  ///< re-imposed at Init and every Advance
+  ParticleState moved_;                ///< the last Advance's particles (buffers reused)
   std::uint64_t seed_ = 0;
   // Idempotent advance: the last (run_id, step_index) and its reply.
   std::string last_run_id_;
