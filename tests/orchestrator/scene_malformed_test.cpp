@@ -209,11 +209,11 @@ const std::vector<MalformedCase>& cases() {
        "  end: 1.0\n",
        "  end: 1.0\n  end: 2.0\n",
        {"scene.yaml:28:3: duplicate key 'end' in time"}},
-      {"inflow_on_deterministic_species",
+      {"negative_inflow_value_of_a_deterministic_species",
        "    diffusivity: 0.2\n",
-       "    diffusivity: 0.2\n    boundaries: [{region: left, condition: inflow, value: 1}]\n",
-       {"scene.yaml:23:44: species[1].boundaries[0].condition: condition 'inflow' applies to "
-        "stochastic species only ('B' is deterministic"}},
+       "    diffusivity: 0.2\n    boundaries: [{region: left, condition: inflow, value: -1}]\n",
+       {"scene.yaml:23:59: species[1].boundaries[0].value: -1 is out of range; allowed: a "
+        "number >= 0"}},
       {"inflow_needs_box_or_channel",
        "condition: dirichlet, value: 4}",
        "condition: inflow, value: 4}",

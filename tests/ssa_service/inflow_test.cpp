@@ -46,9 +46,9 @@ TEST(Inflow, ResetsExactlyTheParticlesInsideTheBoxAsTheyMove) {
   solver.set_counts(0, std::vector<std::int64_t>(10, 3));
   InflowBuffer b;
   b.species = 0;
-  b.lower = {0.0, -1e300, -1e300};
-  b.upper = {0.22, 1e300, 1e300};
-  b.concentration = 204.0;  // round(204 * 0.1) = 20 molecules
+  b.box.lower = {0.0, -1e300, -1e300};
+  b.box.upper = {0.22, 1e300, 1e300};
+  b.box.concentration = 204.0;  // round(204 * 0.1) = 20 molecules
   const std::vector<InflowBuffer> inflows{b};
   EXPECT_TRUE(apply_inflows(solver, inflows));
   std::vector<std::int64_t> want{20, 20, 3, 3, 3, 3, 3, 3, 3, 3};

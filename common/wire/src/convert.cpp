@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/wire/convert.hpp"
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 namespace sadr::wire {
@@ -59,6 +61,39 @@ Box from_proto(const common::v1::Box& in, std::string_view where) {
     b.validate();
   } catch (const InvalidArgument& e) {
     throw bad(e.what());
+  }
+  return b;
+}
+
+InflowBox from_proto(const common::v1::InflowBuffer& in, int dimension, std::string_view where) {
+  const std::string at(where);
+  if (in.lower_size() != dimension || in.upper_size() != dimension) {
+    throw InvalidArgument(at + ": lower/upper have " + std::to_string(in.lower_size()) + "/" +
+                              std::to_string(in.upper_size()) +
+                              " entries (allowed: " + std::to_string(dimension) + ", one per axis)",
+                          {{"field", at + ".lower"}});
+  }
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  InflowBox b;
+  b.species = in.species();
+  b.lower = {-kInf, -kInf, -kInf};
+  b.upper = {kInf, kInf, kInf};
+  for (int a = 0; a < dimension; ++a) {
+    b.lower[a] = in.lower(a);
+    b.upper[a] = in.upper(a);
+    if (std::isnan(b.lower[a]) || std::isnan(b.upper[a]) || !(b.lower[a] <= b.upper[a])) {
+      throw InvalidArgument(
+          at + ": axis " + std::to_string(a) + " has lower = " + format_value(b.lower[a]) +
+              " > upper = " + format_value(b.upper[a]) + " (allowed: lower <= upper)",
+          {{"field", at + ".lower"}});
+    }
+  }
+  b.concentration = in.concentration();
+  if (!std::isfinite(b.concentration) || b.concentration < 0) {
+    throw InvalidArgument(
+        at + ".concentration = " + format_value(b.concentration) +
+            " (allowed: finite, >= 0 molecules/length^d)",
+        {{"field", at + ".concentration"}, {"value", format_value(b.concentration)}});
   }
   return b;
 }

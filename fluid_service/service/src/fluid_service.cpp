@@ -87,6 +87,18 @@ void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
   for (auto& c : conc) {
     if (c.empty()) c.assign(particles.size(), 0.0);
   }
+  std::vector<Inflow> inflows;
+  for (int k = 0; k < req.model().inflows_size(); ++k) {
+    const std::string where = "init.model.inflows[" + std::to_string(k) + "]";
+    const auto& in = req.model().inflows(k);
+    const int s = model.species_index(in.species());
+    if (s < 0) {
+      throw InvalidArgument(
+          where + ".species = '" + in.species() + "' is not a deterministic species of the model",
+          {{"field", where + ".species"}, {"value", in.species()}});
+    }
+    inflows.push_back({s, wire::from_proto(in, particles.dimension, where)});
+  }
   backend->initialize(model, particles, conc);
   const Capabilities caps = backend->capabilities();
   if (caps.moves_particles) rep.add_capabilities("moves_particles");
@@ -97,6 +109,8 @@ void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
   model_ = std::move(model);
   n_particles_ = particles.size();
   have_last_ = false;
+  inflows_ = std::move(inflows);
+  apply_inflows();
   log::info("initialised backend '", backend_->name(), "' with ", n_particles_, " particles, ",
             model_.species.size(), " species");
 }
@@ -131,11 +145,29 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
   rep.set_min_density(r.min_density);
   rep.set_max_density(r.max_density);
   rep.set_particles_moved(r.particles_moved);
+  apply_inflows();
   last_run_id_ = req.run_id();
   last_step_ = req.step_index();
   last_reply_ = rep;
   have_last_ = true;
   add_state();
+}
+
+void FluidServiceHandler::apply_inflows() {
+  if (inflows_.empty()) return;
+  FluidBackend& b = backend();
+  b.read_state(scratch_);
+  for (const Inflow& in : inflows_) {
+    std::vector<double> c = b.concentrations(in.species);
+    bool changed = false;
+    for (std::size_t i = 0; i < scratch_.size(); ++i) {
+      if (c[i] != in.box.concentration && in.box.contains(&scratch_.positions[3 * i])) {
+        c[i] = in.box.concentration;
+        changed = true;
+      }
+    }
+    if (changed) b.set_concentrations(in.species, c);
+  }
 }
 
 void FluidServiceHandler::get_state(const v1::GetStateRequest& req, v1::GetStateReply& rep) const {

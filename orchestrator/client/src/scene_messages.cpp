@@ -75,8 +75,10 @@ void add_regions(const Scene& scene, const std::set<std::string>& used, Repeated
   }
 }
 
-/// The inflow buffers of species `s` as boxes (a channel is unbounded across its axis).
-void add_inflows(const Scene& scene, const Species& s, ssa::v1::SsaModel& m) {
+/// The inflow buffers of species `s` as boxes (a channel is unbounded across its axis),
+/// for ssa::v1::SsaModel (stochastic species) or fluid::v1::FluidModel (deterministic).
+template <class ServiceModel>
+void add_inflows(const Scene& scene, const Species& s, ServiceModel& m) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   for (const auto& b : s.boundaries) {
     if (b.condition != BoundaryCondition::kInflow) continue;
@@ -125,6 +127,7 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
     if (!contains(plan.fluid_species, s.name)) continue;
     to_proto(s, *m->add_species(), regions_used);
     if (!s.stochastic) {
+      add_inflows(scene, s, *m);  // a stochastic species' buffer is held by ssa_service
       auto* c = init.mutable_concentrations()->add_species();
       c->set_name(s.name);
       c->mutable_concentrations()->Assign(s.initial.begin(), s.initial.end());

@@ -89,11 +89,6 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
                                        : BoundaryCondition::kNone;
     const bool inflow = b.condition == BoundaryCondition::kInflow;
     const bool held = b.condition == BoundaryCondition::kDirichlet || inflow;
-    if (inflow && !sp.stochastic) {
-      r.error(YamlReader::child(f, "condition"),
-              "condition 'inflow' applies to stochastic species only ('" + sp.name +
-                  "' is deterministic; deterministic inflow buffers are not implemented)");
-    }
     if (inflow && rg && rg->shape != RegionShape::kBox && rg->shape != RegionShape::kChannel) {
       r.error(rf, "condition 'inflow' needs a region of shape box or channel ('" + rg->name +
                       "' is a " + std::string(to_string(rg->shape)) + ")");
@@ -140,7 +135,7 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
     }
     if (!rg) continue;
     b.region = rg->name == kAllRegion ? std::string() : rg->name;
-    if (inflow) {  // geometric, re-evaluated on the moving particles by ssa_service
+    if (inflow) {  // geometric, re-evaluated on the moving particles by the service
       sp.boundaries.push_back(b);
       continue;
     }

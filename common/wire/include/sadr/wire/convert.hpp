@@ -5,6 +5,7 @@
 /// field, so generated types never reach a numerical core.
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 #include <string_view>
@@ -24,6 +25,25 @@ Status from_proto(const common::v1::Status& in);
 void to_proto(const Box& in, common::v1::Box& out);
 /// Throws InvalidArgument (prefixing `where`, e.g. "init.model.box") on bad input.
 Box from_proto(const common::v1::Box& in, std::string_view where);
+
+/// An inflow buffer's box and value (sadr.common.v1.InflowBuffer); the species
+/// is resolved by the service that applies it.
+struct InflowBox {
+  std::string species;
+  std::array<double, 3> lower{};  ///< [length] (+-inf allowed; unused axes unbounded)
+  std::array<double, 3> upper{};  ///< [length]
+  double concentration = 0.0;     ///< >= 0 [molecules/length^d]
+  /// Whether the position x (3 values) lies in the box.
+  [[nodiscard]] bool contains(const double* x) const {
+    for (int a = 0; a < 3; ++a) {
+      if (!(x[a] >= lower[a] && x[a] <= upper[a])) return false;
+    }
+    return true;
+  }
+};
+/// Checks one bound per axis < dimension, lower <= upper and a finite
+/// concentration >= 0; errors name `where` (e.g. "init.model.inflows[0]").
+InflowBox from_proto(const common::v1::InflowBuffer& in, int dimension, std::string_view where);
 
 /// Copies the arrays; velocities only if `with_velocities` and present.
 void to_proto(const ParticleState& in, common::v1::ParticleState& out, bool with_velocities = true);

@@ -10,10 +10,12 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "sadr/fluid/backend_registry.hpp"
 #include "sadr/fluid/fluid_model.hpp"
 #include "sadr/fluid/v1/fluid_service.pb.h"
+#include "sadr/wire/convert.hpp"
 #include "sadr/wire/typed_handler.hpp"
 
 namespace sadr::fluid {
@@ -39,6 +41,8 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
   void snapshot(const v1::SnapshotRequest& req, v1::SnapshotReply& rep) const;
   void restore(const v1::RestoreRequest& req);
   FluidBackend& backend() const;
+  /// Re-imposes the inflow buffers' concentrations on the particles inside them.
+  void apply_inflows();
   int species(const std::string& name, const std::string& where) const;
 
   BackendRegistry registry_;
@@ -50,6 +54,11 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
   bool have_last_ = false;
   v1::AdvanceReply last_reply_;
   ParticleState scratch_;  ///< state read for Advance(return_state); buffers reused
+  struct Inflow {
+    int species = 0;  ///< deterministic species index
+    wire::InflowBox box;
+  };
+  std::vector<Inflow> inflows_;  ///< applied after Init and after every Advance
 };
 
 }  // namespace sadr::fluid

@@ -32,9 +32,10 @@ enum class BoundaryCondition {
   kNeumann,    ///< inward flux density `value` [molecules/(length^(d-1) time)]
   kFree,       ///< the particles exchange molecules like fluid particles but do not move
                ///< (needs WALL_CONDITION support on the wire; see docs/scene-format.md)
-  kInflow,     ///< stochastic species only: the particles inside the region's box or
-               ///< channel (any kind, re-evaluated every coupling step as they move) are
-               ///< reset to `value` at the start of every SSA step (an inlet buffer)
+  kInflow,     ///< the particles inside the region's box or channel (any kind,
+               ///< re-evaluated as they move) are reset to `value`: stochastic species
+               ///< at the start of every SSA step, deterministic ones after every fluid
+               ///< call (an inlet buffer)
 };
 std::string_view to_string(BoundaryCondition condition);
 

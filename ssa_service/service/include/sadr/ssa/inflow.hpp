@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file inflow.hpp
-/// Inflow buffers (sadr.ssa.v1.InflowBuffer): boxes in which the copy number
+/// Inflow buffers (sadr.common.v1.InflowBuffer): boxes in which the copy number
 /// of a species is re-imposed as round(c V_i) on the particles currently
 /// inside, at Init and at the start of every Advance. With a periodic flow
 /// this turns a slab into an inlet at a fixed concentration, and particles
@@ -9,23 +9,21 @@
 /// with their neighbours like any voxel (documented in docs/scene-format.md).
 #pragma once
 
-#include <array>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/ssa/v1/ssa_service.pb.h"
+#include "sadr/wire/convert.hpp"
 
 namespace sadr::ssa {
 
 class NsmSolver;
 
 struct InflowBuffer {
-  int species = 0;                ///< index among the stochastic species
-  std::array<double, 3> lower{};  ///< box [length] (+-inf allowed)
-  std::array<double, 3> upper{};  ///< box [length]
-  double concentration = 0.0;     ///< >= 0 [molecules/length^d]
+  int species = 0;      ///< index among the stochastic species
+  wire::InflowBox box;  ///< where and which concentration
 };
 
 /// Converts and validates the model's inflows (throws InvalidArgument naming
