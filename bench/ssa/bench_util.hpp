@@ -21,6 +21,20 @@ inline double thread_cpu_s() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+/// Process CPU time [s] over all threads (CLOCK_PROCESS_CPUTIME_ID).
+inline double process_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// Wall-clock time [s] (CLOCK_MONOTONIC).
+inline double wall_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 /// Peak resident set size of the process [MiB] (getrusage).
 inline double peak_rss_mib() {
   rusage ru{};

@@ -6,11 +6,14 @@
 //   ssa_bench b          (a) plus A + B <-> C in every voxel
 //   ssa_bench c          100^3 = 1e6 voxels, 6 neighbours, 3e6 molecules, pure diffusion
 //   ssa_bench d          2D SPH particle graph (jittered 200^2, h = 3 dx), graph rebuilt
-//                        every coupling step at ~1 event per voxel per step
+//                        every coupling step at ~1 event per voxel per step; then the
+//                        GraphBuilder alone on the same positions
 //   ssa_bench boost_csr  our CSR vs boost::compressed_sparse_row_graph on the (a) edges
 // Options: --events N (NSM events), --baseline-events N (direct method events),
 // --n side (lattice side), --move s (scenario d: displacement std dev per axis per step
 // in dx, default 0.01; the graph builder searches again once a particle moved > 0.05 h).
+// Scenario d times the rebuild by wall clock and CPU (all threads, calling thread): it
+// uses OMP_NUM_THREADS threads; run with OMP_WAIT_POLICY=passive (as ssa_service does).
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +25,7 @@
 #include "bench_util.hpp"
 #include "sadr/ssa/diffusion_graph.hpp"
 #include "sadr/ssa/direct_solver.hpp"
+#include "sadr/ssa/graph_builder.hpp"
 #include "sadr/ssa/nsm_solver.hpp"
 
 namespace sadr::ssa::bench {
@@ -197,7 +201,9 @@ int sph_scenario(const Options& o) {
   std::mt19937_64 gen(5);
   std::normal_distribution<double> g(0.0, o.move * dx);
   const int steps = 40;
-  double rebuild_cpu = 0, event_cpu = 0;
+  // The rebuild may use OpenMP threads (GraphBuilder): wall time, CPU time of all
+  // threads (process clock) and of the calling thread, so neither hides the other.
+  double rebuild_cpu = 0, rebuild_wall = 0, rebuild_proc = 0, event_cpu = 0;
   std::uint64_t fired_total = 0;
   for (int step = 0; step < steps; ++step) {
     for (std::size_t i = 0; i < nv; ++i) {  // small displacements: a flowing fluid
@@ -208,12 +214,39 @@ int sph_scenario(const Options& o) {
         if (x >= n * dx) x -= n * dx;
       }
     }
-    double t0 = thread_cpu_s();
+    const double w0 = wall_s(), p0 = process_cpu_s(), t0 = thread_cpu_s();
     s.update_graph(p);
     rebuild_cpu += thread_cpu_s() - t0;
+    rebuild_proc += process_cpu_s() - p0;
+    rebuild_wall += wall_s() - w0;
     std::uint64_t fired = 0;
     event_cpu += run_events(s, nv / tau, static_cast<double>(nv), fired);
     fired_total += fired;
+  }
+  // The graph builder alone (GraphBuilder::build, no rates or event queue) on the
+  // same 40 position sets (same initial lattice and motion seed, replayed).
+  double builder_wall = 0, builder_proc = 0;
+  {
+    ParticleState q = lattice(2, n, dx, 0.2, 3);
+    std::mt19937_64 gen2(5);
+    std::normal_distribution<double> g2(0.0, o.move * dx);
+    GraphBuilder builder;
+    DiffusionGraph graph;
+    builder.build(graph, m, q);
+    for (int step = 0; step < steps; ++step) {
+      for (std::size_t i = 0; i < nv; ++i) {
+        for (int a = 0; a < 2; ++a) {
+          double& x = q.positions[3 * i + a];
+          x += g2(gen2);
+          if (x < 0) x += n * dx;
+          if (x >= n * dx) x -= n * dx;
+        }
+      }
+      const double w0 = wall_s(), p0 = process_cpu_s();
+      builder.build(graph, m, q);
+      builder_proc += process_cpu_s() - p0;
+      builder_wall += wall_s() - w0;
+    }
   }
   // Baseline on the same final graph.
   DirectSolver d(m, 777);
@@ -223,8 +256,10 @@ int sph_scenario(const Options& o) {
   const double dcpu = run_events(d, a0, o.baseline_events / 10, dfired);
   const double d_ns = 1e9 * dcpu / static_cast<double>(std::max<std::uint64_t>(dfired, 1));
   const double ns_event = 1e9 * event_cpu / static_cast<double>(fired_total);
-  const double rebuild_ns = 1e9 * rebuild_cpu / (static_cast<double>(steps) * nv);
-  const double step_ns = 1e9 * (rebuild_cpu + event_cpu) / (static_cast<double>(steps) * nv);
+  const double per = 1e9 / (static_cast<double>(steps) * nv);  // s -> ns/voxel/step
+  const double rebuild_ns = per * rebuild_wall;
+  const double step_ns = per * (rebuild_wall + event_cpu);  // the event loop is serial
+  const int threads = s.state().graph_builder().threads();
   Json j;
   j.str("scenario", "d");
   j.str("command", o.command);
@@ -238,7 +273,12 @@ int sph_scenario(const Options& o) {
   j.num("rebuild_cpu_s", rebuild_cpu);
   j.num("ns_per_event", ns_event);
   j.num("events_per_s", 1e9 / ns_event);
-  j.num("rebuild_ns_per_voxel", rebuild_ns);
+  j.num("rebuild_threads", threads);
+  j.num("rebuild_ns_per_voxel", rebuild_ns);  // wall
+  j.num("rebuild_cpu_ns_per_voxel", per * rebuild_proc);
+  j.num("rebuild_thread_cpu_ns_per_voxel", per * rebuild_cpu);
+  j.num("graph_builder_ns_per_voxel", per * builder_wall);  // wall, builder alone
+  j.num("graph_builder_cpu_ns_per_voxel", per * builder_proc);
   j.num("neighbour_searches", static_cast<double>(s.state().graph_builder().searches()));
   j.num("candidates_per_voxel",
         static_cast<double>(s.state().graph_builder().candidate_count()) / nv);
@@ -246,12 +286,16 @@ int sph_scenario(const Options& o) {
   j.num("direct_baseline_events", static_cast<double>(dfired));
   j.num("direct_baseline_ns_per_event", d_ns);
   j.num("speedup_vs_direct", d_ns / ns_event);
-  char line[512];
+  char line[768];
   std::snprintf(line, sizeof line,
                 "ssa_bench d: %d steps x %zu voxels, %.2f events/voxel/step: %.1f ns/event, "
-                "rebuild (cell list + graph + rates + heap) %.1f ns/voxel, whole step %.1f "
+                "rebuild (cell list + graph + rates + heap) %.1f ns/voxel wall on %d threads "
+                "(CPU %.1f all threads, %.1f calling thread; graph builder alone %.1f wall, %.1f "
+                "CPU), %.0f searches, whole step %.1f "
                 "ns/voxel, direct baseline %.3g ns/event -> speed-up %.0fx, peak RSS %.0f MiB",
                 steps, nv, static_cast<double>(fired_total) / (steps * nv), ns_event, rebuild_ns,
+                threads, per * rebuild_proc, per * rebuild_cpu, per * builder_wall,
+                per * builder_proc, static_cast<double>(s.state().graph_builder().searches()),
                 step_ns, d_ns, d_ns / ns_event, peak_rss_mib());
   emit(j, line);
   return 0;

@@ -10,12 +10,15 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <random>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "graph_build_detail.hpp"  // private (ssa_service/core/src): the full-stencil path
+#include "graph_filter.hpp"
 #include "sadr/ssa/neighbor_list.hpp"
 #include "sadr/ssa/nsm_solver.hpp"
 #include "ssa_test_support.hpp"
@@ -141,6 +144,130 @@ TEST(GraphBuilder, SolverGraphEqualsFreshBuildAndSnapshotAfterReuseRestores) {
   }
   EXPECT_EQ(a.save(), b.save());
   EXPECT_GT(a.events(), 1000u);
+}
+
+/// Random particles in a box of side len (some walls, varied m and rho, one
+/// coincident pair, which must carry no edge), moved by `jitter` per axis per call.
+struct Cloud {
+  ParticleState p;
+  std::mt19937_64 gen;
+  Cloud(int dim, std::size_t n, double len, std::uint64_t seed) : gen(seed) {
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    p.dimension = dim;
+    p.resize(n, false);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int a = 0; a < dim; ++a) p.positions[3 * i + a] = len * (0.02 + 0.96 * u01(gen));
+      p.masses[i] = 0.5 + u01(gen);
+      p.densities[i] = 0.8 + 0.4 * u01(gen);
+      if (i % 11 == 3) p.kinds[i] = ParticleKind::kWall;
+    }
+    for (int a = 0; a < dim; ++a) p.positions[3 * 1 + a] = p.positions[a];  // 0 and 1 coincide
+  }
+  void move(double jitter, double len) {
+    std::normal_distribution<double> step(0.0, jitter);
+    for (std::size_t i = 2; i < p.size(); ++i) {
+      for (int a = 0; a < p.dimension; ++a) {
+        double& x = p.positions[3 * i + a];
+        x = std::clamp(x + step(gen), 0.0, len);
+      }
+    }
+  }
+};
+
+TEST(GraphBuilder, SimdSearchAndFilterGiveTheScalarGraphBitForBit) {
+  if (!detail::filter_simd_available()) GTEST_SKIP() << "no AVX-512F on this CPU";
+  for (int dim = 1; dim <= 3; ++dim) {
+    for (bool periodic : {true, false}) {
+      for (JumpConvention conv : {JumpConvention::kVolume, JumpConvention::kSymmetric}) {
+        for (double reg : {0.0, 0.01}) {
+          const double len = 10.0, h = dim == 1 ? 0.9 : dim == 2 ? 1.3 : 1.9;
+          Cloud c(dim, dim == 1 ? 120 : 600, len, 5 + dim);
+          Model m = testing::diffusion_model(testing::make_box(dim, len, periodic), h, 1.0, conv);
+          m.regularization = reg;
+          GraphBuilder scalar, simd;
+          scalar.set_simd(false);
+          DiffusionGraph gs, gv;
+          for (int it = 0; it < 6; ++it) {
+            const std::string where = "dim " + std::to_string(dim) + " periodic " +
+                                      std::to_string(periodic) + " reg " + std::to_string(reg) +
+                                      " step " + std::to_string(it);
+            scalar.build(gs, m, c.p);
+            simd.build(gv, m, c.p);
+            expect_same_graph(gs, gv, where);
+            ASSERT_GT(gs.edge_count(), 0u) << where;
+            // The vectorised search gives the same candidate rows too.
+            ASSERT_EQ(scalar.candidate_count(), simd.candidate_count()) << where;
+            ASSERT_EQ(scalar.searches(), simd.searches()) << where;
+            c.move(0.01 * h, len);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(GraphBuilder, GraphDoesNotDependOnTheThreadCount) {
+  for (int dim = 2; dim <= 3; ++dim) {
+    const double len = dim == 2 ? 40.0 : 14.0, h = 1.5;
+    Cloud c(dim, 3100, len, 17 + dim);  // >= 3 x GraphBuilder's 1024 rows per thread
+    const Model m = testing::diffusion_model(testing::make_box(dim, len, true), h, 1.0);
+    GraphBuilder b1, b2, b3;
+    b1.set_threads(1);
+    b2.set_threads(2);
+    b3.set_threads(3);
+    DiffusionGraph g1, g2, g3;
+    for (int it = 0; it < 5; ++it) {
+      const std::string where = "dim " + std::to_string(dim) + " step " + std::to_string(it);
+      b1.build(g1, m, c.p);
+      b2.build(g2, m, c.p);
+      b3.build(g3, m, c.p, /*force_search=*/it % 2 == 1);
+      expect_same_graph(g1, g2, where);
+      expect_same_graph(g1, g3, where);
+      if (it == 4) {
+        std::set<std::pair<std::uint32_t, std::uint32_t>> got;
+        for (std::uint32_t i = 0; i < g3.size(); ++i) {
+          for (auto k = g3.row_start[i]; k < g3.row_start[i + 1]; ++k)
+            got.emplace(i, g3.edges[k].target);
+        }
+        auto want = brute_pairs(m.box, c.p, h);
+        want.erase({0, 1});  // the coincident pair: no edge (zero weight)
+        want.erase({1, 0});
+        ASSERT_EQ(got, want) << where;
+      }
+      c.move(it == 2 ? 0.2 * h : 0.01 * h, len);  // one move beyond the skin: a search
+    }
+    EXPECT_GE(b2.searches(), 2u);
+  }
+}
+
+TEST(GraphBuilder, WeightsEqualTheFullStencilPathBitForBit) {
+  // An independent code path (diffusion_graph.cpp's cell-order rows with weights
+  // computed on the fly): same edge set, same weights and wall distances per edge.
+  for (int dim = 1; dim <= 3; ++dim) {
+    for (JumpConvention conv : {JumpConvention::kVolume, JumpConvention::kSymmetric}) {
+      const double len = 10.0, h = dim == 1 ? 0.9 : 1.6;
+      Cloud c(dim, dim == 1 ? 100 : 500, len, 31 + dim);
+      const Model m = testing::diffusion_model(testing::make_box(dim, len, true), h, 1.0, conv);
+      DiffusionGraph fast, ref;
+      GraphBuilder b;
+      b.build(fast, m, c.p);
+      detail::prepare_vertices(ref, c.p);
+      detail::build_rows_full_stencil(ref, m, c.p);
+      ASSERT_EQ(fast.edge_count(), ref.edge_count());
+      for (std::uint32_t i = 0; i < fast.size(); ++i) {
+        std::map<std::uint32_t, double> want;
+        for (auto k = ref.row_start[i]; k < ref.row_start[i + 1]; ++k)
+          want[ref.edges[k].target] = ref.edges[k].weight;
+        ASSERT_EQ(fast.row_start[i + 1] - fast.row_start[i], want.size()) << "row " << i;
+        for (auto k = fast.row_start[i]; k < fast.row_start[i + 1]; ++k) {
+          ASSERT_EQ(want.count(fast.edges[k].target), 1u) << "row " << i;
+          ASSERT_EQ(std::memcmp(&want[fast.edges[k].target], &fast.edges[k].weight, 8), 0)
+              << "row " << i << " target " << fast.edges[k].target;
+        }
+        ASSERT_EQ(std::memcmp(&fast.wall_distance[i], &ref.wall_distance[i], 8), 0) << i;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 /// \file cell_grid.hpp
-/// Cell lists shared by build_neighbor_list() and DiffusionGraph::build(): the
-/// particles binned into cells at least `cutoff` wide, their coordinates copied
-/// in cell order (the inner loop streams contiguous memory), and a visitor over
-/// the pairs closer than the cutoff. Allocations are kept between builds.
+/// Cell lists shared by build_neighbor_list(), the full-stencil graph path and
+/// GraphBuilder's row search: the particles binned into cells at least `cutoff`
+/// wide, their coordinates copied in cell order (the inner loops stream contiguous
+/// memory), and a visitor over the neighbours of one particle. Allocations are
+/// kept between builds.
 #pragma once
 
 #include <array>
@@ -60,99 +61,41 @@ class CellGrid {
     }
   }
 
-  /// True if for_each_pair() may be used (no periodic axis with < 3 cells,
-  /// where one cell could be reached through two images).
-  [[nodiscard]] bool half_stencil_ok() const { return !any_min_image_; }
-
-  /// Calls f(i, j, r2) once per unordered pair closer than the cutoff, with
-  /// r2 computed as |(x_i - x_j) - shift|^2 (i the particle of the earlier cell
-  /// in the half stencil). Deterministic order. Requires half_stencil_ok().
-  template <int D, typename F>
-  void for_each_pair(F&& f) const {
-    // Half stencil: the own cell (later members only) and the neighbour cells
-    // at offsets that are lexicographically positive (z, y, x).
-    std::array<std::array<int, 3>, 13> off{};
-    int n_off = 0;
-    for (int oz = (D >= 3 ? -1 : 0); oz <= (D >= 3 ? 1 : 0); ++oz) {
-      for (int oy = (D >= 2 ? -1 : 0); oy <= (D >= 2 ? 1 : 0); ++oy) {
-        for (int ox = -1; ox <= 1; ++ox) {
-          if (oz > 0 || (oz == 0 && (oy > 0 || (oy == 0 && ox > 0)))) {
-            off[n_off++] = {ox, oy, oz};
-          }
-        }
-      }
-    }
-    const double* xs = xs_.data();
-    const std::uint32_t* members = members_.data();
-    const std::uint32_t* cell_start = cell_start_.data();
-    const double cut2 = cut2_;
-    const std::array<int, 3> nc = nc_;
-    for (int cz = 0; cz < nc[2]; ++cz) {
-      for (int cy = 0; cy < nc[1]; ++cy) {
-        for (int cx = 0; cx < nc[0]; ++cx) {
-          const std::size_t c = (static_cast<std::size_t>(cz) * nc[1] + cy) * nc[0] + cx;
-          const std::uint32_t b = cell_start[c], e = cell_start[c + 1];
-          if (b == e) continue;
-          // Neighbour cells of the half stencil with their image shifts.
-          std::array<std::uint32_t, 13> nb_b{}, nb_e{};
-          std::array<std::array<double, 3>, 13> nb_sh{};
-          int n_nb = 0;
-          for (int k = 0; k < n_off; ++k) {
-            const int cc[3] = {cx + off[k][0], cy + off[k][1], cz + off[k][2]};
-            int w[3];
-            std::array<double, 3> sh{0, 0, 0};
-            bool ok = true;
-            for (int a = 0; a < 3; ++a) {
-              w[a] = cc[a];
-              if (a >= D) continue;
-              if (cc[a] < 0 || cc[a] >= nc[a]) {
-                // A periodic axis with 1 cell would meet itself; with 2 cells
-                // the min-image path is used (half_stencil_ok() is false).
-                if (!periodic_[a] || nc[a] < 3) {
-                  ok = false;
-                  break;
-                }
-                w[a] = cc[a] < 0 ? cc[a] + nc[a] : cc[a] - nc[a];
-                sh[a] = cc[a] < 0 ? -len_[a] : len_[a];
-              }
-            }
-            if (!ok) continue;
-            const std::size_t cn = (static_cast<std::size_t>(w[2]) * nc[1] + w[1]) * nc[0] + w[0];
-            if (cell_start[cn] == cell_start[cn + 1]) continue;
-            nb_b[n_nb] = cell_start[cn];
-            nb_e[n_nb] = cell_start[cn + 1];
-            nb_sh[n_nb] = sh;
-            ++n_nb;
-          }
-          for (std::uint32_t m = b; m < e; ++m) {
-            const std::uint32_t i = members[m];
-            const double x0 = xs[D * m];
-            [[maybe_unused]] const double x1 = D >= 2 ? xs[D * m + 1] : 0.0;
-            [[maybe_unused]] const double x2 = D >= 3 ? xs[D * m + 2] : 0.0;
-            auto run = [&](std::uint32_t lo, std::uint32_t hi, const std::array<double, 3>& sh) {
-              for (std::uint32_t q = lo; q < hi; ++q) {
-                const double dx = (x0 - xs[D * q]) - sh[0];
-                double r2 = dx * dx;
-                if constexpr (D >= 2) {
-                  const double dy = (x1 - xs[D * q + 1]) - sh[1];
-                  r2 += dy * dy;
-                }
-                if constexpr (D >= 3) {
-                  const double dz = (x2 - xs[D * q + 2]) - sh[2];
-                  r2 += dz * dz;
-                }
-                if (r2 < cut2) f(i, members[q], r2);
-              }
-            };
-            run(m + 1, e, std::array<double, 3>{0, 0, 0});
-            for (int k = 0; k < n_nb; ++k) run(nb_b[k], nb_e[k], nb_sh[k]);
-          }
-        }
-      }
-    }
-  }
+  /// True if every neighbour cell is reached through exactly one periodic image
+  /// (no periodic axis with < 3 cells), so a pair distance needs no per-pair
+  /// minimum image: what the row search through view() assumes.
+  [[nodiscard]] bool single_image() const { return !any_min_image_; }
 
   [[nodiscard]] int dimension() const { return d_; }
+
+  /// Read-only view of the grid for the vectorised row search (graph_search.cpp).
+  struct View {
+    int d;
+    std::array<int, 3> nc;
+    std::array<bool, 3> periodic;
+    std::array<double, 3> len;
+    double cut2;
+    const double* x;   ///< wrapped coordinates, d per particle, index order
+    const double* xs;  ///< the same in cell order
+    const std::uint32_t* members;
+    const std::uint32_t* cell_start;
+  };
+  [[nodiscard]] View view() const {
+    return View{d_,
+                nc_,
+                periodic_,
+                len_,
+                cut2_,
+                x_.data(),
+                xs_.data(),
+                members_.data(),
+                cell_start_.data()};
+  }
+  /// Cell coordinate of position x on axis a (clamped into the grid).
+  [[nodiscard]] int coord(double x, int a) const {
+    const int c = static_cast<int>((x - lo_[a]) * inv_w_[a]);
+    return c < 0 ? 0 : (c > nc_[a] - 1 ? nc_[a] - 1 : c);
+  }
 
  private:
   template <int D, bool kMinImage, typename F>
@@ -206,10 +149,6 @@ class CellGrid {
     if (dx > 0.5 * len) return dx - len;
     if (dx < -0.5 * len) return dx + len;
     return dx;
-  }
-  [[nodiscard]] int coord(double x, int a) const {
-    const int c = static_cast<int>((x - lo_[a]) * inv_w_[a]);
-    return c < 0 ? 0 : (c > nc_[a] - 1 ? nc_[a] - 1 : c);
   }
 
   int d_ = 3;

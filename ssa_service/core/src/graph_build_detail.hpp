@@ -15,7 +15,7 @@ void validate_particles(const Model& model, const ParticleState& p);
 /// Sizes the arrays of g for p.size() vertices; fills volume, kind, is_wall.
 void prepare_vertices(DiffusionGraph& g, const ParticleState& p);
 /// The rows by a full-stencil cell search with explicit minimum image (boxes
-/// with a periodic axis of fewer than 3 cells, where the half stencil and the
+/// with a periodic axis of fewer than 3 cells, where the single-image row search and the
 /// candidate list cannot be used). Rows in cell order.
 void build_rows_full_stencil(DiffusionGraph& g, const Model& model, const ParticleState& p);
 

@@ -4,10 +4,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <type_traits>
 
 #include "cell_grid.hpp"
 #include "graph_build_detail.hpp"
+#include "graph_filter.hpp"
+#include "graph_search.hpp"
+
+#ifdef SADR_HAVE_OPENMP
+#include <omp.h>
+#endif
 
 namespace sadr::ssa {
 
@@ -29,6 +34,24 @@ inline double min_image(double dx, double len, double half) {
   return dx;
 }
 
+inline int omp_thread_id() {
+#ifdef SADR_HAVE_OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+/// Threads in the current team: may be fewer than asked for (nested in another
+/// parallel region, thread limits), so the row ranges follow this, not the request.
+inline int omp_team_size() {
+#ifdef SADR_HAVE_OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
 }  // namespace
 
 void GraphBuilder::build(DiffusionGraph& g, const Model& model, const ParticleState& particles,
@@ -42,17 +65,7 @@ void GraphBuilder::build(DiffusionGraph& g, const Model& model, const ParticleSt
     detail::build_rows_full_stencil(g, model, particles);
     return;
   }
-  switch (model.box.dimension) {
-    case 1:
-      filter<1>(g, model, particles);
-      break;
-    case 2:
-      filter<2>(g, model, particles);
-      break;
-    default:
-      filter<3>(g, model, particles);
-      break;
-  }
+  filter(g, model, particles);
 }
 
 bool GraphBuilder::wrap_and_check(const Model& model, const ParticleState& p,
@@ -88,168 +101,156 @@ bool GraphBuilder::wrap_and_check(const Model& model, const ParticleState& p,
 }
 
 bool GraphBuilder::search(const Model& model, const ParticleState& p, const DiffusionGraph& g) {
-  // Scratch kept between searches (one per thread): the cell grid and the pair list.
-  thread_local detail::CellGrid grid;
-  thread_local std::vector<std::uint32_t> pairs, by_target, cursor;
+  // The cell grid is kept between searches (one per thread calling build()); the
+  // OpenMP workers use the caller's through `grid` (a thread_local named inside the
+  // parallel region would be each worker's own, empty one).
+  thread_local detail::CellGrid grid_of_caller;
+  detail::CellGrid& grid = grid_of_caller;
   const std::size_t n = p.size();
   const double cut = model.smoothing_length * (1.0 + kSkinFraction);
   grid.build(model.box, p.positions, cut);
-  if (!grid.half_stencil_ok()) return false;
+  // A periodic axis with < 3 cells would need a per-pair minimum image; the caller
+  // then builds the rows by the explicit full-stencil path.
+  if (!grid.single_image()) return false;
   ++searches_;
   const std::uint8_t* wall = g.is_wall.data();
+  // Wall flags in the grid's cell order, so the vectorised scan loads them contiguously.
+  wall_cell_.resize(n);
+  const std::uint32_t* members = grid.view().members;
+  for (std::size_t m = 0; m < n; ++m) wall_cell_[m] = wall[members[m]];
   cand_start_.assign(n + 1, 0);
   cand_split_.assign(n, 0);
-  std::uint32_t* deg_nw = cand_start_.data();  // degrees first, then offsets
-  std::uint32_t* deg_w = cand_split_.data();
-  pairs.clear();
-  auto collect = [&](std::uint32_t i, std::uint32_t j, double) {
-    pairs.push_back(i);
-    pairs.push_back(j);
-    ++(wall[j] ? deg_w[i] : deg_nw[i]);
-    ++(wall[i] ? deg_w[j] : deg_nw[j]);
-  };
-  const int d = model.box.dimension;
-  if (d == 1) grid.for_each_pair<1>(collect);
-  if (d == 2) grid.for_each_pair<2>(collect);
-  if (d == 3) grid.for_each_pair<3>(collect);
-  // Row layout: [start, split) non-wall targets, [split, next start) wall targets.
-  std::uint32_t out = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t nw = deg_nw[i], w = deg_w[i];
-    deg_nw[i] = out;
-    deg_w[i] = out + nw;
-    out += nw + w;
-  }
-  cand_start_[n] = out;
-  // Sorted rows without a comparison sort (two counting passes, O(pairs)):
-  // bucket the sources by target (a vertex has as many in- as out-candidates,
-  // so the buckets are the rows), then scan the targets in ascending order and
-  // append each to the rows of its sources.
-  by_target.resize(out);
-  cursor.assign(cand_start_.begin(), cand_start_.end() - 1);
-  for (std::size_t k = 0; k < pairs.size(); k += 2) {
-    const std::uint32_t i = pairs[k], j = pairs[k + 1];
-    by_target[cursor[j]++] = i;
-    by_target[cursor[i]++] = j;
-  }
-  cand_.resize(out);
-  std::copy(cand_start_.begin(), cand_start_.end() - 1, cursor.begin());
-  std::vector<std::uint32_t>& wcur = pairs;  // reused as the wall-part cursors
-  wcur.assign(cand_split_.begin(), cand_split_.end());
-  for (std::uint32_t t = 0; t < n; ++t) {
-    for (std::uint32_t k = cand_start_[t]; k < cand_start_[t + 1]; ++k) {
-      const std::uint32_t s = by_target[k];
-      cand_[wall[t] ? wcur[s]++ : cursor[s]++] = t;
+  // Each row searched on its own (full stencil, ~2x the distance tests of a half
+  // stencil) so rows go to threads with no shared writes; each row is then
+  // sorted, which makes the rows independent of the cell order and the history.
+  const int nt = thread_count(n);
+  cand_scratch_.resize(static_cast<std::size_t>(nt));
+  std::vector<std::uint32_t> base(static_cast<std::size_t>(nt) + 1, 0);
+#pragma omp parallel num_threads(nt) if (nt > 1)
+  {
+    const int t = omp_thread_id(), team = omp_team_size();
+    const std::size_t r0 = n * t / team, r1 = n * (t + 1) / team;
+    std::vector<std::uint32_t>& rows = cand_scratch_[t];
+    std::uint32_t* deg_nw = cand_start_.data();  // lengths first, then offsets
+    std::uint32_t* deg_w = cand_split_.data();
+    detail::search_rows(grid, wall, wall_cell_.data(), r0, r1, rows, deg_nw, deg_w, simd_);
+    base[t + 1] = static_cast<std::uint32_t>(rows.size());
+#pragma omp barrier
+#pragma omp single
+    {
+      for (int k = 0; k < team; ++k) base[k + 1] += base[k];
+      for (int k = team; k < nt; ++k) base[k + 1] = base[k];  // no such threads
+      cand_.resize(base[nt]);
+    }  // implicit barrier
+    std::uint32_t off = base[t];
+    for (std::size_t i = r0; i < r1; ++i) {
+      const std::uint32_t nw = deg_nw[i], w = deg_w[i];
+      deg_nw[i] = off;
+      deg_w[i] = off + nw;
+      off += nw + w;
     }
+    std::copy(rows.begin(), rows.end(), cand_.begin() + base[t]);
   }
+  cand_start_[n] = base[nt];
   xref_ = xw_;
   wall_ref_ = g.is_wall;
   valid_ = true;
   return true;
 }
 
-template <int D>
-void GraphBuilder::filter(DiffusionGraph& g, const Model& model, const ParticleState& p) const {
+void GraphBuilder::filter(DiffusionGraph& g, const Model& model, const ParticleState& p) {
   const std::size_t n = p.size();
+  const int d = model.box.dimension;
   const double h = model.smoothing_length;
-  const double h2 = h * h;
-  const double eps_h2 = model.regularization * h * h;
-  const double inv_h = 1.0 / h;
-  const double f0 = lucy_f(0.0, h, D);  // F(r) = f0 (1 - r/h)^2
-  const bool symmetric = model.convention == JumpConvention::kSymmetric;
-  const double* m = p.masses.data();
-  const double* rho = p.densities.data();
-  const double* vol = g.volume.data();
-  const double* x = xw_.data();
-  // Walled axes: len 0 and half +inf, so the branch-free minimum image below is
-  // the identity there (dx - 0 * 0 == dx).
-  double len[3] = {0, 0, 0}, half[3];
-  for (int a = 0; a < 3; ++a) half[a] = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < D; ++a) {
-    if (!model.box.periodic[a]) continue;
-    len[a] = model.box.length(a);
-    half[a] = 0.5 * len[a];
+  detail::FilterParams prm;
+  prm.dim = d;
+  prm.x = xw_.data();
+  // Walled axes: len 0 and half +inf, so the branch-free minimum image is the
+  // identity there (dx - 0 * 0 == dx).
+  for (int a = 0; a < 3; ++a) {
+    const bool per = a < d && model.box.periodic[a];
+    prm.len[a] = per ? model.box.length(a) : 0.0;
+    prm.half[a] = per ? 0.5 * prm.len[a] : std::numeric_limits<double>::infinity();
   }
-  const std::uint32_t* cs = cand_start_.data();
-  const std::uint32_t* csplit = cand_split_.data();
-  const std::uint32_t* cand = cand_.data();
+  prm.h2 = h * h;
+  prm.eps_h2 = model.regularization * h * h;
+  prm.inv_h = 1.0 / h;
+  prm.f0 = lucy_f(0.0, h, d);  // F(r) = f0 (1 - r/h)^2
+  prm.symmetric = model.convention == JumpConvention::kSymmetric;
+  prm.m = p.masses.data();
+  prm.rho = p.densities.data();
+  prm.vol = g.volume.data();
+  prm.cand_start = cand_start_.data();
+  prm.cand_split = cand_split_.data();
+  prm.cand = cand_.data();
+  const detail::FilterOutputs o{g.row_start.data(), g.split.data(), g.sum_nowall.data(),
+                                g.sum_all.data(), g.wall_distance.data()};
   // Upper bound first (no reallocation once the candidate count stopped growing;
   // shrinking afterwards does not free), then trimmed to the edges kept.
-  if (g.edges.size() < cand_.size()) g.edges.resize(cand_.size());
-  DiffusionGraph::Edge* e = g.edges.data();
-  // Per-row scratch: r2 and F reg of every candidate, computed in branch-free loops
-  // the compiler vectorises (sqrt and division two at a time; -fno-math-errno),
-  // then compressed to the edges with r < h. Computing each pair once (j > i, the
-  // result stored in the reverse slot for row j) was slower: 583-593 vs 395-400
-  // ns/voxel per rebuild in interleaved runs of scenario d; the scattered stores
-  // cost more than the sqrt and division they save.
-  thread_local std::vector<double> r2buf, fbuf;
-  std::uint32_t max_row = 0;
-  for (std::size_t i = 0; i < n; ++i) max_row = std::max(max_row, cs[i + 1] - cs[i]);
-  if (r2buf.size() < max_row) r2buf.resize(max_row), fbuf.resize(max_row);
-  double* r2s = r2buf.data();
-  double* fs = fbuf.data();
+  if (g.edges.size() < cand_.size() + detail::kFilterSlack) {
+    g.edges.resize(cand_.size() + detail::kFilterSlack);
+  }
+  const int nt = thread_count(n);
   std::uint32_t out = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    double xi[3] = {0, 0, 0};
-    for (int a = 0; a < D; ++a) xi[a] = x[D * i + a];
-    const std::uint32_t kb = cs[i], ks = csplit[i], ke = cs[i + 1], len_row = ke - kb;
-    const std::uint32_t* row = cand + kb;
-    for (std::uint32_t k = 0; k < len_row; ++k) {
-      const double* xj = x + static_cast<std::size_t>(D) * row[k];
-      double r2 = 0;
-      for (int a = 0; a < D; ++a) {
-        // Branch-free minimum image: dx - len, dx or dx + len, exactly as min_image().
-        double dx = xi[a] - xj[a];
-        dx -= len[a] *
-              static_cast<double>(static_cast<int>(dx > half[a]) - static_cast<int>(dx < -half[a]));
-        r2 += dx * dx;
+  if (nt == 1) {
+    out = detail::filter_rows(prm, 0, n, g.edges.data(), o, simd_);
+  } else {
+    // Rows split into nt ranges of about equal candidate counts. Range 0 writes
+    // its edges in place; the others into scratch, copied behind it once every
+    // count is known. Each row is computed the same way whatever the split, so
+    // the graph does not depend on the thread count.
+    edge_scratch_.resize(static_cast<std::size_t>(nt));
+    std::vector<std::uint32_t> counts(static_cast<std::size_t>(nt), 0);  // 0 past the team
+#pragma omp parallel num_threads(nt)
+    {
+      const int t = omp_thread_id(), team = omp_team_size();
+      const std::size_t r0 = row_split(t, team), r1 = row_split(t + 1, team);
+      DiffusionGraph::Edge* dst = g.edges.data();
+      if (t > 0) {
+        std::vector<DiffusionGraph::Edge>& s = edge_scratch_[t];
+        const std::size_t need = cand_start_[r1] - cand_start_[r0] + detail::kFilterSlack;
+        if (s.size() < need) s.resize(need);
+        dst = s.data();
       }
-      r2s[k] = r2;
-    }
-    for (std::uint32_t k = 0; k < len_row; ++k) {
-      const double r2 = r2s[k];
-      const double one_q = 1.0 - std::sqrt(r2) * inv_h;  // garbage beyond h: dropped below
-      fs[k] = (r2 / (r2 + eps_h2)) * (f0 * one_q * one_q);
-    }
-    const double mi = m[i], rhoi = rho[i], vi = vol[i];
-    double wall_r2 = std::numeric_limits<double>::infinity();
-    // Keeps the candidates of [k0, k1) with r < h and a positive weight; returns
-    // their weight sum (row order). Two calls: non-wall part, then wall part.
-    auto keep = [&](std::uint32_t k0, std::uint32_t k1, auto to_wall) {
-      double sum = 0;
-      for (std::uint32_t k = k0; k < k1; ++k) {
-        const double r2 = r2s[k];
-        if (!(r2 < h2)) continue;
-        if constexpr (decltype(to_wall)::value) wall_r2 = std::min(wall_r2, r2);
-        const std::uint32_t j = row[k];
-        const double reg_f = fs[k];
-        double w_ij = 0, w_ji = 0;
-        if (symmetric) {
-          // drawert2019 eq 28: D_ij = 2 m_i m_j/(m_i+m_j) (rho_i+rho_j)/(rho_i rho_j) reg F_ij.
-          w_ij = w_ji =
-              2.0 * (mi * m[j] / (mi + m[j])) * ((rhoi + rho[j]) / (rhoi * rho[j])) * reg_f;
-        } else {
-          // Volume-consistent: D_ij = 2 V_j F_ij reg, so D_ij V_i = D_ji V_j.
-          w_ij = 2.0 * vol[j] * reg_f;
-          w_ji = 2.0 * vi * reg_f;
+      counts[t] = detail::filter_rows(prm, r0, r1, dst, o, simd_);
+#pragma omp barrier
+      std::uint32_t base = 0;
+      for (int k = 0; k < t; ++k) base += counts[k];
+      if (t > 0) {
+        std::copy(dst, dst + counts[t], g.edges.data() + base);
+        for (std::size_t i = r0; i < r1; ++i) {
+          g.row_start[i] += base;
+          g.split[i] += base;
         }
-        if (!(w_ij > 0 && w_ji > 0)) continue;  // coincident particles (reg = 0): no edge
-        e[out++] = DiffusionGraph::Edge{w_ij, j};
-        sum += w_ij;
       }
-      return sum;
-    };
-    g.row_start[i] = out;
-    const double sum_nowall = keep(0, ks - kb, std::false_type{});
-    g.split[i] = out;
-    const double sum_wall = keep(ks - kb, len_row, std::true_type{});
-    g.sum_nowall[i] = sum_nowall;
-    g.sum_all[i] = sum_nowall + sum_wall;
-    g.wall_distance[i] = std::sqrt(wall_r2);
+    }
+    for (int k = 0; k < nt; ++k) out += counts[k];
   }
   g.row_start[n] = out;
   g.edges.resize(out);
+}
+
+int GraphBuilder::threads() const {
+#ifdef SADR_HAVE_OPENMP
+  return threads_ > 0 ? threads_ : omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+int GraphBuilder::thread_count(std::size_t rows) const {
+  // Below ~1000 rows per thread the fork/join costs more than the rows.
+  const std::size_t by_size = rows / kMinRowsPerThread;
+  return static_cast<int>(std::clamp<std::size_t>(by_size, 1, static_cast<std::size_t>(threads())));
+}
+
+std::size_t GraphBuilder::row_split(int t, int nt) const {
+  const std::size_t n = cand_start_.size() - 1;
+  if (t <= 0) return 0;
+  if (t >= nt) return n;
+  const std::uint64_t target = static_cast<std::uint64_t>(cand_start_[n]) * t / nt;
+  return static_cast<std::size_t>(
+      std::lower_bound(cand_start_.begin(), cand_start_.end() - 1, target) - cand_start_.begin());
 }
 
 }  // namespace sadr::ssa
