@@ -17,12 +17,6 @@
 namespace sadr::e2e {
 namespace {
 
-std::string replace_once(std::string s, const std::string& from, const std::string& to) {
-  const auto at = s.find(from);
-  if (at == std::string::npos) throw std::runtime_error("'" + from + "' not in the example");
-  return s.replace(at, from.size(), to);
-}
-
 class BackendSwap : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(BackendSwap, PoiseuilleTracerExampleRunsWithOnlyTheBackendNameChanged) {

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,13 @@ struct CsvFrame {
   }
   [[nodiscard]] std::size_t rows() const { return columns.empty() ? 0 : columns[0].size(); }
 };
+
+/// `s` with the first `from` replaced by `to` (edits a shipped example for a test).
+inline std::string replace_once(std::string s, const std::string& from, const std::string& to) {
+  const auto at = s.find(from);
+  if (at == std::string::npos) throw std::runtime_error("'" + from + "' not in the example");
+  return s.replace(at, from.size(), to);
+}
 
 inline CsvFrame read_csv(const fs::path& p) {
   std::istringstream in(read_file(p));

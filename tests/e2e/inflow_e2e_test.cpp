@@ -16,12 +16,6 @@
 namespace sadr::e2e {
 namespace {
 
-std::string replace_once(std::string s, const std::string& from, const std::string& to) {
-  const auto at = s.find(from);
-  if (at == std::string::npos) throw std::runtime_error("'" + from + "' not in the example");
-  return s.replace(at, from.size(), to);
-}
-
 TEST(InflowE2e, DeterministicBufferHoldsItsValueOnTheParticlesInsideInEveryFrame) {
   const fs::path d = scratch("inflow-deterministic");
   std::string text =
