@@ -4,57 +4,115 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 
 namespace sadr::ssa {
 namespace {
 
-TEST(EventHeap4, RandomUpdatesKeepMinimumAndSlots) {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Brute force: earliest time, lowest voxel on ties.
+std::uint32_t brute_top(const std::vector<double>& t) {
+  return static_cast<std::uint32_t>(std::min_element(t.begin(), t.end()) - t.begin());
+}
+
+TEST(EventTree, RandomUpdatesMatchBruteForce) {
   std::mt19937_64 gen(7);
   std::uniform_real_distribution<double> u(0.0, 100.0);
-  for (std::size_t n : {1u, 2u, 5u, 17u, 1000u}) {
+  // Sizes around the fan-out powers (8, 64, 512) and with partial last nodes.
+  for (std::size_t n : {1u, 2u, 5u, 8u, 9u, 17u, 63u, 64u, 65u, 513u, 1000u, 4100u}) {
     std::vector<double> t(n);
     for (auto& x : t) x = u(gen);
-    t[0] = std::numeric_limits<double>::infinity();
-    EventHeap4 heap;
-    heap.assign(t);
-    ASSERT_TRUE(heap.valid());
+    t[0] = kInf;
+    EventTree q;
+    q.assign(t);
+    ASSERT_TRUE(q.valid());
     for (int step = 0; step < 3000; ++step) {
       const auto v = static_cast<std::uint32_t>(gen() % n);
-      const double nt = (step % 11 == 0) ? std::numeric_limits<double>::infinity() : u(gen);
+      // Coarse values (multiples of 0.5) make exact ties frequent.
+      double nt = std::floor(u(gen) * 2) / 2;
+      if (step % 11 == 0) nt = kInf;
       if (step % 3 == 0) {
-        const std::uint32_t top = heap.top().voxel;
-        t[top] = nt;
-        heap.update_top(nt);
+        t[q.top_voxel()] = nt;
+        // Both versions of update_top (AVX-512 where available, and portable).
+        if (step % 2 == 0) {
+          q.update_top(nt);
+        } else {
+          q.update_top_portable(nt);
+        }
       } else {
         t[v] = nt;
-        heap.update(v, nt);
+        q.update(v, nt);
       }
-      const double expect = *std::min_element(t.begin(), t.end());
-      ASSERT_EQ(heap.top().time, expect);
-      ASSERT_EQ(t[heap.top().voxel], expect);
+      const std::uint32_t expect = brute_top(t);
+      ASSERT_EQ(q.top_time(), t[expect]) << "n = " << n << " step " << step;
+      ASSERT_EQ(q.top_voxel(), expect) << "n = " << n << " step " << step;
     }
-    ASSERT_TRUE(heap.valid());
-    for (std::uint32_t v = 0; v < n; ++v) ASSERT_EQ(heap.time_of(v), t[v]);
+    ASSERT_TRUE(q.valid());
+    for (std::uint32_t v = 0; v < n; ++v) ASSERT_EQ(q.time_of(v), t[v]);
+    ASSERT_TRUE(std::equal(t.begin(), t.end(), q.times().begin(), q.times().end()));
   }
 }
 
-TEST(EventHeap4, EntriesRoundTripAndRejectsCorruption) {
-  std::vector<double> t = {5, 3, 8, 1, 9, 2, 7};
-  EventHeap4 a;
+TEST(EventTree, StateIsAFunctionOfTheTimes) {
+  // Snapshots store only the times: a tree rebuilt from them must equal the
+  // updated one, including which voxel wins a tie.
+  std::vector<double> t = {5, 3, 8, 1, 9, 2, 7, 1, 4, 1};
+  EventTree a;
   a.assign(t);
-  EventHeap4 b;
-  b.assign_entries(a.entries());
-  ASSERT_TRUE(b.valid());
-  EXPECT_EQ(b.top().voxel, 3u);
-  auto bad = a.entries();
-  bad[1].voxel = bad[2].voxel;
-  EXPECT_THROW(b.assign_entries(bad), std::exception);
-  EventHeap4 c = a;  // copy
-  c.update(3, 100);
-  EXPECT_EQ(a.top().voxel, 3u);
-  EXPECT_EQ(c.top().voxel, 5u);
+  EXPECT_EQ(a.top_voxel(), 3u);  // 1 at voxels 3, 7, 9: the lowest index
+  a.update(3, 6);
+  EXPECT_EQ(a.top_voxel(), 7u);
+  a.update_top(0.5);  // voxel 7
+  EXPECT_EQ(a.top_voxel(), 7u);
+  a.update(9, 0.5);
+  EXPECT_EQ(a.top_voxel(), 7u);
+  a.update(7, 2);
+  EXPECT_EQ(a.top_voxel(), 9u);
+  EventTree b;
+  b.assign(a.times());
+  EXPECT_TRUE(a.valid());
+  EXPECT_EQ(b.top_voxel(), a.top_voxel());
+  EventTree c = a;  // copy is independent
+  c.update(9, 100);
+  EXPECT_EQ(a.top_voxel(), 9u);
+  EXPECT_EQ(c.top_voxel(), 5u);
+}
+
+TEST(EventTree, AllIdleAndEmpty) {
+  EventTree e;
+  e.assign({});
+  EXPECT_TRUE(e.empty());
+  EXPECT_TRUE(e.valid());
+  std::vector<double> t(20, kInf);
+  EventTree q;
+  q.assign(t);
+  EXPECT_EQ(q.top_time(), kInf);
+  EXPECT_EQ(q.top_voxel(), 0u);
+  q.update(13, 2.0);
+  EXPECT_EQ(q.top_voxel(), 13u);
+  q.update_top(kInf);
+  EXPECT_EQ(q.top_time(), kInf);
+  EXPECT_EQ(q.top_voxel(), 0u);
+  EXPECT_TRUE(q.valid());
+}
+
+TEST(HugePages, AllocatorRoundTripsLargeAndSmall) {
+  // Both paths of the allocator (small: aligned operator new; large: mmap'd whole
+  // huge pages) hold their data and are 64-byte aligned.
+  for (std::size_t n : {std::size_t{10}, std::size_t{3} << 18}) {
+    std::vector<double, detail::HugePageAllocator<double>> v(n, 1.5);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % 64, 0u);
+    v.back() = 2.5;
+    EXPECT_EQ(v.front(), 1.5);
+    EXPECT_EQ(v.back(), 2.5);
+    v.resize(2 * n, 3.5);  // reallocation copies and frees the old block
+    EXPECT_EQ(v[n - 1], 2.5);
+    EXPECT_EQ(v[2 * n - 1], 3.5);
+  }
 }
 
 }  // namespace

@@ -3,7 +3,10 @@
 // across graph rebuilds, reservoirs, Neumann sources and region-restricted reactions.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "sadr/common/status.hpp"
@@ -94,6 +97,63 @@ TEST(Snapshot, RejectsCorruptionAndOtherModels) {
   EXPECT_THROW(c.restore(blob), sadr::InvalidArgument);
   EXPECT_NO_THROW(a.restore(blob));
   EXPECT_EQ(a.time(), 0.5);
+}
+
+// FNV-1a 64, the snapshot checksum (as in the core's blob.hpp).
+std::uint64_t fnv1a(const std::string& s) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ULL;
+  return h;
+}
+
+/// The same state in the version 1 layout (the 4-ary heap solver's): the event
+/// times as {f64 time, u32 voxel, u32 pad} records, here in reverse voxel order
+/// (any permutation is a valid reading: heap order is one).
+std::string as_version1(const std::string& v2, std::size_t voxels) {
+  const std::size_t times_at = v2.size() - 8 - 8 * voxels;  // vec<f64> payload, then checksum
+  std::string out = v2.substr(0, times_at);                 // up to and with the length field
+  const std::uint32_t version = 1;
+  std::memcpy(out.data() + 8, &version, 4);  // after the 8-byte magic
+  for (std::size_t k = voxels; k-- > 0;) {
+    double t;
+    std::memcpy(&t, v2.data() + times_at + 8 * k, 8);
+    const auto voxel = static_cast<std::uint32_t>(k);
+    const std::uint32_t pad = 0;
+    out.append(reinterpret_cast<const char*>(&t), 8);
+    out.append(reinterpret_cast<const char*>(&voxel), 4);
+    out.append(reinterpret_cast<const char*>(&pad), 4);
+  }
+  const std::uint64_t sum = fnv1a(out);
+  out.append(reinterpret_cast<const char*>(&sum), 8);
+  return out;
+}
+
+TEST(Snapshot, ReadsVersion1Blobs) {
+  NsmSolver a(rich_model(), 5);
+  a.update_graph(particles(1));
+  a.set_counts(0, std::vector<std::int64_t>(64, 10));
+  a.advance(0.8);
+  const std::string blob = a.save();
+  const Outcome ref = continue_run(a, 0.8);
+  NsmSolver b(rich_model(), 6);
+  b.restore(as_version1(blob, 64));
+  const Outcome got = continue_run(b, 0.8);
+  EXPECT_EQ(got.counts, ref.counts);
+  EXPECT_EQ(got.events, ref.events);
+  EXPECT_EQ(got.blob, ref.blob);
+  // A version 1 blob naming a voxel twice is rejected.
+  std::string dup = as_version1(blob, 64);
+  const std::size_t first = dup.size() - 8 - 16 * 64;
+  std::memcpy(dup.data() + first + 16 + 8, dup.data() + first + 8, 4);
+  dup.resize(dup.size() - 8);
+  const std::uint64_t sum = fnv1a(dup);
+  dup.append(reinterpret_cast<const char*>(&sum), 8);
+  EXPECT_THROW(b.restore(dup), sadr::InvalidArgument);
+  // Unknown versions name the supported ones.
+  std::string v9 = blob;
+  const std::uint32_t nine = 9;
+  std::memcpy(v9.data() + 8, &nine, 4);
+  EXPECT_THROW(b.restore(v9), sadr::InvalidArgument);
 }
 
 }  // namespace

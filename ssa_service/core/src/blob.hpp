@@ -7,6 +7,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -26,9 +27,14 @@ class BlobWriter {
     out_.append(reinterpret_cast<const char*>(&v), sizeof v);
   }
   template <typename T>
-  void vec(const std::vector<T>& v) {
+  void vec(std::span<const T> v) {
+    static_assert(std::is_trivially_copyable_v<T>);
     pod(static_cast<std::uint64_t>(v.size()));
     if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  template <typename T>
+  void vec(const std::vector<T>& v) {
+    vec(std::span<const T>(v));
   }
   void bytes(std::string_view s) { out_.append(s); }
   [[nodiscard]] const std::string& str() const { return out_; }

@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: MIT
-// NsmSolver::save / restore. Layout (version 1, little-endian):
+// NsmSolver::save / restore. Layout (version 2, little-endian):
 //   "SADRNSM1" | u32 version | u64 model fingerprint | u64 seed | 4 x u64 RNG state
 //   | f64 time | u64 events | i32 dimension | vec<f64> positions | vec<f64> densities
 //   | vec<f64> masses | vec<u8> kinds | vec<i64> counts (species-major)
-//   | vec<{f64 time, u32 voxel}> heap entries in heap order | u64 FNV-1a of all previous bytes
+//   | vec<f64> next event time by voxel | u64 FNV-1a of all previous bytes
+// Version 1 (written by the 4-ary heap solver) stored the last field as
+// vec<{f64 time, u32 voxel, u32 pad}> in heap order: the same times, permuted;
+// restore() still reads it. The event queue is a function of the times alone
+// (EventTree), so the times are all a snapshot needs.
+#include <cmath>
 #include <string>
 
 #include "blob.hpp"
@@ -37,9 +42,7 @@ std::string NsmSolver::save() const {
   w.vec(in.masses);
   w.vec(in.kinds);
   w.vec(state_.all_counts());
-  std::vector<HeapRecord> heap;
-  for (const auto& e : heap_.entries()) heap.push_back({e.time, e.voxel, 0});
-  w.vec(heap);
+  w.vec(queue_.times());
   const std::uint64_t sum = detail::fnv1a(w.str());
   w.pod(sum);
   return w.str();
@@ -51,9 +54,9 @@ void NsmSolver::restore(std::string_view blob) {
     throw InvalidArgument("snapshot: bad magic (not an NsmSolver snapshot)");
   }
   const auto version = r.pod<std::uint32_t>("version");
-  if (version != kSnapshotVersion) {
-    throw InvalidArgument("snapshot: version = " + std::to_string(version) +
-                          " (supported: " + std::to_string(kSnapshotVersion) + ")");
+  if (version != 1 && version != kSnapshotVersion) {
+    throw InvalidArgument("snapshot: version = " + std::to_string(version) + " (supported: 1, " +
+                          std::to_string(kSnapshotVersion) + ")");
   }
   if (blob.size() < 8) throw InvalidArgument("snapshot truncated");
   const std::string_view body = blob.substr(0, blob.size() - 8);
@@ -79,24 +82,46 @@ void NsmSolver::restore(std::string_view blob) {
   in.masses = r.vec<double>("masses", max_len);
   in.kinds = r.vec<ParticleKind>("kinds", max_len);
   auto counts = r.vec<std::int64_t>("counts", max_len);
-  auto heap = r.vec<HeapRecord>("heap", max_len);
+  std::vector<double> times;
+  if (version == 1) {
+    // Heap entries in heap order: scatter them by voxel, each voxel exactly once.
+    const auto heap = r.vec<HeapRecord>("heap", max_len);
+    times.assign(heap.size(), 0.0);
+    std::vector<std::uint8_t> seen(heap.size(), 0);
+    for (std::size_t k = 0; k < heap.size(); ++k) {
+      const std::uint32_t v = heap[k].voxel;
+      if (v >= heap.size() || seen[v]) {
+        throw InvalidArgument("snapshot: heap entry " + std::to_string(k) + " has voxel " +
+                              std::to_string(v) +
+                              " (duplicate or >= " + std::to_string(heap.size()) + ")");
+      }
+      seen[v] = 1;
+      times[v] = heap[k].time;
+    }
+  } else {
+    times = r.vec<double>("event times", max_len);
+  }
   if (r.remaining() != 8) throw InvalidArgument("snapshot: unexpected trailing bytes");
+  for (std::size_t v = 0; v < times.size(); ++v) {
+    if (std::isnan(times[v]) || times[v] < time) {
+      throw InvalidArgument("snapshot: event time of voxel " + std::to_string(v) + " = " +
+                            format_value(times[v]) + " (allowed: >= the clock " +
+                            format_value(time) + ")");
+    }
+  }
 
   RdmeState fresh(state_.model());
   if (!in.densities.empty()) fresh.update_graph(in);
   fresh.restore_counts(std::move(counts));
-  std::vector<EventHeap4::Entry> entries;
-  entries.reserve(heap.size());
-  for (const auto& h : heap) entries.push_back({h.time, h.voxel});
-  if (entries.size() != fresh.voxel_count()) {
-    throw InvalidArgument("snapshot: heap has " + std::to_string(entries.size()) +
-                          " entries, expected " + std::to_string(fresh.voxel_count()));
+  if (times.size() != fresh.voxel_count()) {
+    throw InvalidArgument("snapshot: " + std::to_string(times.size()) + " event times, expected " +
+                          std::to_string(fresh.voxel_count()));
   }
-  EventHeap4 fresh_heap;
-  fresh_heap.assign_entries(entries);
+  EventTree fresh_queue;
+  fresh_queue.assign(times);
   // Commit (strong guarantee: nothing above touched *this).
   state_ = std::move(fresh);
-  heap_ = std::move(fresh_heap);
+  queue_ = std::move(fresh_queue);
   for (std::size_t i = 0; i < state_.voxel_count(); ++i) {
     const auto v = static_cast<std::uint32_t>(i);
     state_.cached_rate(v) = state_.total_rate(v);

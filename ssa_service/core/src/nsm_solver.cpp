@@ -36,7 +36,7 @@ void NsmSolver::rebuild_queue() {
     state_.cached_rate(static_cast<std::uint32_t>(i)) = a;
     times[i] = a > 0 ? time_ + detail::exponential(rng_) / a : kInf;
   }
-  heap_.assign(times);
+  queue_.assign(times);
 }
 
 void NsmSolver::advance(double t_end) {
@@ -49,37 +49,39 @@ void NsmSolver::advance(double t_end) {
                           {{"field", "t_end"}, {"value", format_value(t_end)}});
   }
   if (state_.apply_reservoirs()) rebuild_queue();
-  if (heap_.empty()) {
+  if (queue_.empty()) {
     time_ = t_end;
     return;
   }
   std::uint64_t fired = 0;
   for (;;) {
-    const EventHeap4::Entry top = heap_.top();
-    if (!(top.time <= t_end)) break;
-    const double t = top.time;
-    const std::uint32_t i = top.voxel;
+    const double t = queue_.top_time();
+    if (!(t <= t_end)) break;
+    const std::uint32_t i = queue_.top_voxel();
     const std::uint32_t j = state_.fire(i, rng_.uniform() * state_.cached_rate(i));
     ++fired;
     const double ai = state_.total_rate(i);
     state_.cached_rate(i) = ai;
-    heap_.update_top(ai > 0 ? t + detail::exponential(rng_) / ai : kInf);
-    // Memory-level parallelism: start loading the next event's voxel record,
-    // edges and counts now, so those misses overlap with the update of j.
-    state_.prefetch(heap_.top().voxel);
+    queue_.update_top(ai > 0 ? t + detail::exponential(rng_) / ai : kInf);
+    // Memory-level parallelism: the top now is the next event's voxel unless j
+    // overtakes it (rare); start loading its record, edges, counts and time, so
+    // those misses overlap with j's.
+    const std::uint32_t next = queue_.top_voxel();
+    state_.prefetch(next);
+    queue_.prefetch(next);
     if (j != kNoVoxel) {
       const double a_old = state_.cached_rate(j);
       const double a_new = state_.total_rate(j);
       state_.cached_rate(j) = a_new;
       double tj = kInf;
       if (a_new > 0) {
-        const double tau = heap_.time_of(j);
+        const double tau = queue_.time_of(j);
         // Gibson-Bruck rescaling reuses the pending draw; a voxel that was
         // idle (a_old = 0, tau = inf) gets a fresh one.
         tj = (a_old > 0 && tau < kInf) ? t + (a_old / a_new) * (tau - t)
                                        : t + detail::exponential(rng_) / a_new;
       }
-      heap_.update(j, tj);
+      queue_.update(j, tj);
     }
   }
   events_ += fired;

@@ -85,6 +85,11 @@ bool RdmeState::update_graph(const ParticleState& particles) {
   }
   has_walls_ = std::any_of(graph_.is_wall.begin(), graph_.is_wall.end(),
                            [](std::uint8_t w) { return w != 0; });
+  if (has_walls_) {
+    loop_edges_.clear();
+  } else {
+    loop_edges_.assign(graph_.edges.begin(), graph_.edges.end());
+  }
   inputs_.dimension = particles.dimension;
   inputs_.positions = particles.positions;
   inputs_.densities = particles.densities;
@@ -238,7 +243,7 @@ void RdmeState::restore_counts(std::vector<std::int64_t> counts) {
     throw InvalidArgument("restore: counts has " + std::to_string(counts.size()) +
                           " entries, expected " + std::to_string(counts_.size()));
   }
-  counts_ = std::move(counts);
+  counts_.assign(counts.begin(), counts.end());
 }
 
 void RdmeState::apply_reaction(std::size_t r, std::uint32_t i) {

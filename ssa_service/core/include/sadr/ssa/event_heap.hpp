@@ -1,133 +1,204 @@
 // SPDX-License-Identifier: MIT
 /// \file event_heap.hpp
-/// Indexed 4-ary min-heap of next-event times, one entry per voxel, with O(1)
-/// lookup of a voxel's slot (the NSM event queue, Elf & Ehrenberg 2004).
+/// The NSM event queue: next event times of all voxels with the earliest one at
+/// the top (Elf & Ehrenberg 2004 use an indexed binary heap; any exact priority
+/// queue gives the same method).
 ///
-/// Why 4-ary: half the depth of a binary heap, and the four children of a node
-/// are contiguous. Entries are 16 bytes (time, voxel) and the array is offset
-/// by 3 slots in a 64-byte aligned buffer so that every group of siblings
-/// {4k+1 .. 4k+4} occupies exactly one cache line. Four +inf sentinel slots
-/// after the last entry make the sift-down branch-free (see sift_down()).
+/// Layout: a tournament tree of fan-out kFan = 8 over the time array. Level 0 is
+/// the times themselves, by voxel (no slot index: a voxel's time is times[v]);
+/// node k of level L >= 1 holds the minimum of its kFan children on level L-1
+/// and the voxel that attains it. A node's children are one aligned 64-byte
+/// line of times, so recomputing a node is a branch-free SIMD minimum over one
+/// line. Why not the indexed 4-ary heap used before: an NSM event moves the
+/// fired voxel from the root to a uniformly random rank, i.e. almost always down
+/// to a leaf of a log_4 N deep heap, writing the slot index of every entry it
+/// passes (random stores). Here the same update recomputes one line per level
+/// of a log_8 N deep tree whose upper levels are tiny (N = 32^3: 4096 + 512 +
+/// 64 + 8 + 1 nodes, all in L1/L2), and a rescaled jump target usually stops at
+/// its first comparison. Measured in bench/results/ssa_event_loop.md.
+///
+/// Ties: the top is the earliest time and, among equal times, the lowest voxel
+/// index. The structure is a pure function of the times (no history), so a
+/// snapshot only needs the times.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <memory>
-#include <new>
 #include <span>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace sadr::ssa {
 
-class EventHeap4 {
+namespace detail {
+// Transparent huge pages (2 MiB) for the arrays the NSM event loop reads at
+// random (event times, voxel records, counts, edges). Each event touches ~8
+// random cache lines of a working set of 4 MiB (32^3 lattice) to 130 MiB (1e6
+// voxels); with 4 KiB pages nearly every such access also misses the TLB, and on
+// this VM a page walk is itself a chain of misses: a dependent random load over
+// 4 MiB costs ~250 ns with 4 KiB pages and ~16 ns with 2 MiB pages
+// (bench/results/ssa_event_loop.md). The system runs THP in "madvise" mode, so
+// the memory must ask for it. All of it is a hint: without THP the arrays are
+// ordinary memory and nothing else changes.
+
+/// 64-byte aligned allocation; from 256 KiB on: 2 MiB aligned, whole huge pages,
+/// advised before first touch (so page faults map huge pages).
+void* allocate_huge(std::size_t bytes);
+void free_huge(void* p, std::size_t bytes);
+
+/// std::allocator replacement for the event loop's large vectors.
+template <typename T>
+struct HugePageAllocator {
+  using value_type = T;
+  HugePageAllocator() = default;
+  template <typename U>
+  explicit HugePageAllocator(const HugePageAllocator<U>& /*other*/) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(allocate_huge(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t n) { free_huge(p, n * sizeof(T)); }
+  template <typename U>
+  bool operator==(const HugePageAllocator<U>& /*other*/) const {
+    return true;
+  }
+};
+}  // namespace detail
+
+class EventTree {
  public:
-  struct Entry {
-    double time;          ///< next event time [T] (+inf = never)
-    std::uint32_t voxel;  ///< voxel index
-  };
+  static constexpr unsigned kShift = 3;
+  static constexpr std::size_t kFan = std::size_t{1} << kShift;  ///< children per node
+  static_assert(kFan == 8, "a node's children are one cache line (and one AVX-512 register)");
 
-  EventHeap4() = default;
-  EventHeap4(const EventHeap4& other) { *this = other; }
-  EventHeap4& operator=(const EventHeap4& other);
-  EventHeap4(EventHeap4&&) noexcept = default;
-  EventHeap4& operator=(EventHeap4&&) noexcept = default;
-
-  /// Builds the heap with voxel i at times[i], O(N) (Floyd heapify).
+  /// Builds the tree with voxel i at times[i], O(N).
   void assign(std::span<const double> times);
-  /// Rebuilds from a stored entry array (a snapshot); validates the heap property.
-  void assign_entries(std::span<const Entry> entries);
 
   [[nodiscard]] std::size_t size() const { return n_; }
   [[nodiscard]] bool empty() const { return n_ == 0; }
-  /// Earliest entry (requires !empty()).
-  [[nodiscard]] const Entry& top() const { return at(0); }
+  /// Earliest time (requires !empty()).
+  [[nodiscard]] double top_time() const { return min_[min_off_[depth_]]; }
+  /// The voxel with the earliest time, lowest index on ties (requires !empty()).
+  [[nodiscard]] std::uint32_t top_voxel() const { return arg_[arg_off_[depth_]]; }
   /// Current event time of `voxel`.
-  [[nodiscard]] double time_of(std::uint32_t voxel) const { return at(pos_[voxel]).time; }
-  /// Sets the time of `voxel` and restores the heap property, O(log_4 N).
-  void update(std::uint32_t voxel, double time) {
-    const std::uint32_t p = pos_[voxel];
-    const double old = at(p).time;
-    if (time < old) {
-      sift_up(p, Entry{time, voxel});
-    } else {
-      sift_down(p, Entry{time, voxel});
-    }
-  }
-  /// Fast path for the root (the voxel that just fired).
-  void update_top(double time) { sift_down(0, Entry{time, at(0).voxel}); }
+  [[nodiscard]] double time_of(std::uint32_t voxel) const { return min_[voxel]; }
+  /// Next event times by voxel (N entries).
+  [[nodiscard]] std::span<const double> times() const { return {min_.data(), n_}; }
+  /// Hints that `voxel`'s time will be read or written soon.
+  void prefetch(std::uint32_t voxel) const { __builtin_prefetch(min_.data() + voxel); }
 
-  /// Entries in heap order (for snapshots).
-  [[nodiscard]] std::vector<Entry> entries() const;
-  /// True if the heap property and the slot index hold (tests).
+  /// Sets the time of `voxel` and restores the tree, O(log_8 N).
+  void update(std::uint32_t voxel, double time);
+  /// update(top_voxel(), time), faster: every ancestor of the top is recomputed
+  /// (an AVX-512 version when the CPU has it; same results, see event_heap.cpp).
+  void update_top(double time);
+  /// update_top() without AVX-512 (tests compare the two paths).
+  void update_top_portable(double time);
+
+  /// True if every node equals the minimum of its children (tests).
   [[nodiscard]] bool valid() const;
 
  private:
-  static constexpr std::size_t kOffset = 3;  // slot k lives at data_[k + 3]
-  Entry& at(std::size_t k) { return data_[k + kOffset]; }
-  [[nodiscard]] const Entry& at(std::size_t k) const { return data_[k + kOffset]; }
-  void allocate(std::size_t n);
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  static constexpr std::size_t kMaxDepth = 12;  // 8^11 > 2^32 voxels
 
-  void sift_up(std::size_t k, Entry e) {
-    while (k > 0) {
-      const std::size_t parent = (k - 1) >> 2;
-      if (!(e.time < at(parent).time)) break;
-      at(k) = at(parent);
-      pos_[at(k).voxel] = static_cast<std::uint32_t>(k);
-      k = parent;
+  /// Lowest index of the minimum of the kFan values at p (64-byte aligned); *m = that minimum.
+  static unsigned argmin_line(const double* p, double* m) {
+    return argmin_line_with(p, kFan, 0.0, m);  // lane kFan: no substitution
+  }
+  /// The same with p[lane] read as `value` (lane < kFan; kFan: none).
+  static unsigned argmin_line_with(const double* p, std::size_t lane, double value, double* m) {
+#if defined(__SSE2__)
+    __m128d v[kFan / 2];
+    const __m128d sub = _mm_set1_pd(value);
+    const __m128d want = _mm_set1_pd(static_cast<double>(lane));
+    for (std::size_t k = 0; k < kFan / 2; ++k) {
+      const __m128d idx = _mm_set_pd(static_cast<double>(2 * k + 1), static_cast<double>(2 * k));
+      const __m128d hit = _mm_cmpeq_pd(idx, want);
+      v[k] = _mm_or_pd(_mm_and_pd(hit, sub), _mm_andnot_pd(hit, _mm_load_pd(p + 2 * k)));
     }
-    at(k) = e;
-    pos_[e.voxel] = static_cast<std::uint32_t>(k);
+    __m128d lo = _mm_min_pd(_mm_min_pd(v[0], v[1]), _mm_min_pd(v[2], v[3]));
+    for (std::size_t k = 4; k < kFan / 2; k += 4) {
+      lo = _mm_min_pd(lo, _mm_min_pd(_mm_min_pd(v[k], v[k + 1]), _mm_min_pd(v[k + 2], v[k + 3])));
+    }
+    lo = _mm_min_pd(lo, _mm_shuffle_pd(lo, lo, 1));  // both lanes: the minimum
+    unsigned mask = 0;
+    for (std::size_t k = 0; k < kFan / 2; ++k) {
+      mask |= static_cast<unsigned>(_mm_movemask_pd(_mm_cmpeq_pd(v[k], lo))) << (2 * k);
+    }
+    *m = _mm_cvtsd_f64(lo);
+    return static_cast<unsigned>(__builtin_ctz(mask));
+#else
+    double x[kFan];
+    for (std::size_t k = 0; k < kFan; ++k) x[k] = k == lane ? value : p[k];
+    unsigned best = 0;
+    for (unsigned k = 1; k < kFan; ++k) best = x[k] < x[best] ? k : best;
+    *m = x[best];
+    return best;
+#endif
   }
 
-  void sift_down(std::size_t k, Entry e) {
-    // Slots n_ .. n_ + 3 hold +inf sentinels, so every node with a child has four
-    // children slots and the minimum of four is taken without bounds checks and
-    // without branches (setcc / minsd). With the no-wall fire path, advance() went
-    // from 3.3 to 2.5 conditional mispredicts and 834 to 701 instructions per event
-    // (callgrind --branch-sim, scenario a). A sentinel is never moved (+inf < t is false).
-    for (;;) {
-      const std::size_t first = 4 * k + 1;
-      if (first >= n_) break;
-      const Entry* c = &at(first);
-      // The 16 grandchildren of k are 4 consecutive cache lines: start loading
-      // them now, so the next level's miss overlaps this level's (+76 instructions
-      // per event; median wall time better in 3 interleaved comparisons, minima in 2
-      // of 3, all within the shared machine's noise: bench/results/README-ssa.md).
-      if (4 * first + 1 < n_) {
-        const char* g = reinterpret_cast<const char*>(&at(4 * first + 1));
-        __builtin_prefetch(g);
-        __builtin_prefetch(g + 64);
-        __builtin_prefetch(g + 128);
-        __builtin_prefetch(g + 192);
-      }
-      const double t0 = c[0].time, t1 = c[1].time, t2 = c[2].time, t3 = c[3].time;
-      // Index by mask arithmetic on the comparison results (GCC 12 turns "c ? a : b"
-      // on the indices into branches); ties keep the lower slot.
-      // The minima are written with the opposite comparison (equal on ties), so that
-      // GCC does not merge them with the index selection into one branch.
-      const std::size_t i01 = static_cast<std::size_t>(t1 < t0);
-      const double m01 = t0 < t1 ? t0 : t1;  // minsd
-      const std::size_t i23 = 2 + static_cast<std::size_t>(t3 < t2);
-      const double m23 = t2 < t3 ? t2 : t3;
-      const std::size_t take23 = std::size_t{0} - static_cast<std::size_t>(m23 < m01);
-      const std::size_t best = first + (i01 ^ ((i01 ^ i23) & take23));
-      const double best_t = m23 < m01 ? m23 : m01;
-      if (!(best_t < e.time)) break;
-      at(k) = at(best);
-      pos_[at(k).voxel] = static_cast<std::uint32_t>(k);
-      k = best;
-    }
-    at(k) = e;
-    pos_[e.voxel] = static_cast<std::uint32_t>(k);
+  template <unsigned (*Argmin)(const double*, std::size_t, double, double*)>
+  [[gnu::always_inline]] inline void update_top_with(double time);
+  void update_top_avx512(double time);
+
+  /// Recomputes node `node` of level L >= 1 from its children.
+  void recompute(std::size_t L, std::size_t node) {
+    double m;
+    const std::size_t k =
+        node * kFan + argmin_line(min_.data() + min_off_[L - 1] + node * kFan, &m);
+    min_[min_off_[L] + node] = m;
+    arg_[arg_off_[L] + node] = L == 1 ? static_cast<std::uint32_t>(k) : arg_[arg_off_[L - 1] + k];
   }
 
-  struct AlignedFree {
-    void operator()(Entry* p) const { ::operator delete[](p, std::align_val_t{64}); }
-  };
-  std::unique_ptr<Entry[], AlignedFree> data_;
-  std::vector<std::uint32_t> pos_;
+  // Levels 0 (the times, by voxel) .. depth_ (the root, one node), each padded to
+  // a multiple of kFan with +inf, stored back to back: level L starts at min_off_[L].
+  // arg_ holds the voxel attaining each node's minimum (levels >= 1 only).
+  std::vector<double, detail::HugePageAllocator<double>> min_;
+  std::vector<std::uint32_t> arg_;
+  std::size_t min_off_[kMaxDepth + 1] = {};
+  std::size_t arg_off_[kMaxDepth + 1] = {};
+  std::size_t depth_ = 0;
   std::size_t n_ = 0;
 };
+
+inline void EventTree::update(std::uint32_t voxel, double time) {
+  const double old = min_[voxel];
+  min_[voxel] = time;
+  // Walk up while the changed child changes its parent. `value`/`arg` are the
+  // child's new minimum and its voxel; `rose` whether the child's minimum grew.
+  std::size_t child = voxel;
+  double value = time;
+  std::uint32_t arg = voxel;
+  bool rose = time > old;
+  for (std::size_t L = 1; L <= depth_; ++L) {
+    const std::size_t node = child >> kShift;
+    double& pmin_ref = min_[min_off_[L] + node];
+    std::uint32_t& parg_ref = arg_[arg_off_[L] + node];
+    const double pmin = pmin_ref;
+    const std::uint32_t parg = parg_ref;
+    // The parent's minimum came from this child iff its voxel lies in the child's range.
+    const bool from_child = (static_cast<std::size_t>(parg) >> (kShift * (L - 1))) == child;
+    if (from_child) {
+      if (rose) {
+        recompute(L, node);
+      } else {
+        pmin_ref = value;  // still the (lowest-index) minimum of the siblings
+        parg_ref = arg;
+      }
+    } else if (value < pmin || (value == pmin && arg < parg)) {
+      pmin_ref = value;
+      parg_ref = arg;
+    } else {
+      return;  // this parent, hence every ancestor, is unchanged
+    }
+    if (pmin_ref == pmin && parg_ref == parg) return;
+    rose = pmin_ref > pmin;
+    value = pmin_ref;
+    arg = parg_ref;
+    child = node;
+  }
+}
 
 }  // namespace sadr::ssa

@@ -4,12 +4,13 @@
 /// diffusion graph (SPEC section 4).
 ///
 /// Per voxel i the total rate a_i = sum_r a_ir + sum_s X_si kappa_s sum_j D_ij is
-/// cached; the next event time of every voxel sits in an indexed 4-ary heap.
+/// cached; the next event time of every voxel sits in a priority queue.
 /// An event pops the earliest voxel, selects reaction / species / neighbour
 /// with ONE uniform draw scaled by a_i, updates the counts, recomputes the
 /// rates of the touched voxels from the counts, draws a fresh exponential for
 /// the voxel that fired and rescales the time of a jump target whose rate
 /// changed without firing (Gibson & Bruck 2000: tau' = t + (a/a')(tau - t)).
+/// The queue is a tournament tree over the times (EventTree).
 /// update_graph() rebuilds everything in O(N) with fresh draws (exact by
 /// memorylessness) and does nothing when the particles did not change.
 ///
@@ -36,7 +37,9 @@ class NsmSolver {
   /// Stream id of the NSM within a realization's seed (rng::Xoshiro256(seed, kStreamId)).
   static constexpr std::uint64_t kStreamId = 0x55A0;
   /// Snapshot format version written by save().
-  static constexpr std::uint32_t kSnapshotVersion = 1;
+  /// Version 2 stores the next event times by voxel; version 1 (heap entries
+  /// in heap order, the same information) is still read.
+  static constexpr std::uint32_t kSnapshotVersion = 2;
 
   /// @param model validated here (throws InvalidArgument naming field and value)
   /// @param seed  realization seed; equal seeds give identical trajectories
@@ -63,7 +66,7 @@ class NsmSolver {
   [[nodiscard]] double time() const { return time_; }             ///< current time [T]
   [[nodiscard]] std::uint64_t events() const { return events_; }  ///< events fired so far
 
-  /// Complete state (counts, clock, event count, heap, RNG, graph inputs) as a
+  /// Complete state (counts, clock, event count, event times, RNG, graph inputs) as a
   /// versioned binary blob (native little-endian; layout in docs/ssa-core.md).
   [[nodiscard]] std::string save() const;
   /// Restores a save() blob made by a solver with the same model; the run then
@@ -76,14 +79,15 @@ class NsmSolver {
   [[nodiscard]] const DiffusionGraph& graph() const { return state_.graph(); }
   /// Cached total rate a_i of voxel i [1/T] (tests, diagnostics).
   [[nodiscard]] double voxel_rate(std::uint32_t i) const { return state_.cached_rate(i); }
-  [[nodiscard]] const EventHeap4& heap() const { return heap_; }
+  /// The event queue (next event time of every voxel).
+  [[nodiscard]] const EventTree& queue() const { return queue_; }
 
  private:
-  /// All rates from the counts, fresh exponential times from time_, heapify.
+  /// All rates from the counts, fresh exponential times from time_, queue rebuilt.
   void rebuild_queue();
 
   RdmeState state_;
-  EventHeap4 heap_;
+  EventTree queue_;
   rng::Xoshiro256 rng_;
   std::uint64_t seed_;
   double time_ = 0;

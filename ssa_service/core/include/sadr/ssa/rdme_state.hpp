@@ -26,6 +26,7 @@
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/ssa/diffusion_graph.hpp"
+#include "sadr/ssa/event_heap.hpp"
 #include "sadr/ssa/graph_builder.hpp"
 #include "sadr/ssa/model.hpp"
 #include "sadr/ssa/reaction_table.hpp"
@@ -60,7 +61,7 @@ class RdmeState {
   void set_counts(int species, std::span<const std::int64_t> counts);
   [[nodiscard]] std::span<const std::int64_t> counts(int species) const;
   /// All counts, species-major.
-  [[nodiscard]] const std::vector<std::int64_t>& all_counts() const { return counts_; }
+  [[nodiscard]] std::span<const std::int64_t> all_counts() const { return counts_; }
   /// Replaces all counts (species-major, as in a snapshot) without re-imposing anything.
   void restore_counts(std::vector<std::int64_t> counts);
   /// Sets the reservoir counts of wall voxels; returns true if any changed.
@@ -150,8 +151,9 @@ class RdmeState {
   void prefetch(std::uint32_t i) const {
     const VoxelRecord& v = voxels_[i];  // a demand load of the record
     if (v.begin < v.end) {
-      __builtin_prefetch(graph_.edges.data() + v.begin);      // first and last line
-      __builtin_prefetch(graph_.edges.data() + (v.end - 1));  // of the edge row
+      const DiffusionGraph::Edge* edges = has_walls_ ? graph_.edges.data() : loop_edges_.data();
+      __builtin_prefetch(edges + v.begin);      // first and last line
+      __builtin_prefetch(edges + (v.end - 1));  // of the edge row
     }
     for (int s : diffusing_) __builtin_prefetch(counts_.data() + s * n_ + i);
   }
@@ -193,9 +195,13 @@ class RdmeState {
   DiffusionGraph graph_;
   GraphBuilder builder_;
   ReactionTable table_;
-  std::vector<VoxelRecord> voxels_;
+  // Huge pages: the event loop reads both at random (event_heap.hpp).
+  std::vector<VoxelRecord, detail::HugePageAllocator<VoxelRecord>> voxels_;
   ParticleState inputs_;
-  std::vector<std::int64_t> counts_;
+  std::vector<std::int64_t, detail::HugePageAllocator<std::int64_t>> counts_;
+  /// Copy of graph_.edges in huge pages for the no-wall event loop (fire_open(),
+  /// prefetch()): the graph's own array is a plain vector, mostly on 4 KiB pages.
+  std::vector<DiffusionGraph::Edge, detail::HugePageAllocator<DiffusionGraph::Edge>> loop_edges_;
   std::vector<double> kappa_;
   std::vector<int> diffusing_;
   std::vector<std::uint8_t> reservoir_;  ///< per species: has a WallReservoir
