@@ -5,6 +5,9 @@
 #include "sadr/common/rng.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
+#ifdef SADR_HAVE_OPENMP
+#include <omp.h>
+#endif
 
 namespace sadr::fluid {
 namespace {
@@ -61,6 +64,36 @@ INSTANTIATE_TEST_SUITE_P(
         Case{3, {true, true, true}, {3, 3, 3}, 0.5, 1500},
         Case{3, {false, true, false}, {3, 2, 2.5}, 0.5, 1200},
         Case{3, {true, true, true}, {1.0, 1.2, 3}, 0.5, 800}));
+
+// The build scans each thread's range into its own buffer: the lists must not depend on the
+// thread count (3000 particles: above kMinParallel, so the region really runs threaded).
+TEST(NeighborList, SameListsOnAnyThreadCount) {
+  Box box;
+  box.dimension = 3;
+  box.periodic = {true, true, false};
+  box.hi = {6.0, 5.0, 4.0};
+  rng::Xoshiro256 gen(3, 9);
+  std::vector<double> x(3 * 3000);
+  for (std::size_t i = 0; i < 3000; ++i) {
+    for (int a = 0; a < 3; ++a) x[3 * i + a] = gen.uniform() * box.hi[a];
+  }
+  const NeighborList brute = brute_force_neighbors(box, 0.7, x);
+#ifdef SADR_HAVE_OPENMP
+  const int max_threads = omp_get_max_threads();
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+#else
+  for (int threads : {1}) {
+#endif
+    NeighborList cell;
+    CellListBuilder(box, 0.7).build(x, cell);
+    EXPECT_EQ(cell.offsets, brute.offsets) << threads << " threads";
+    EXPECT_EQ(cell.indices, brute.indices) << threads << " threads";
+  }
+#ifdef SADR_HAVE_OPENMP
+  omp_set_num_threads(max_threads);
+#endif
+}
 
 TEST(NeighborList, RejectsTooSmallPeriodicBox) {
   Box box;

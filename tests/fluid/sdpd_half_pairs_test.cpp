@@ -15,6 +15,7 @@
 #include "sadr/fluid/pair_noise_batch.hpp"
 #include "sadr/fluid/pair_terms.hpp"
 #include "sadr/fluid/parallel.hpp"
+#include "sadr/fluid/sdpd_pair_block.hpp"
 #include "sdpd/sdpd_backend.hpp"
 #ifdef SADR_HAVE_OPENMP
 #include <omp.h>
@@ -184,6 +185,116 @@ TEST(PairNoiseBatch, EqualsSingleDrawsForEveryLanePadding) {
         }
       }
       for (const auto& v : z) EXPECT_EQ(v[n], -7.0f) << "wrote past n = " << n;
+    }
+  }
+}
+
+// The half path batches several particles i per block (2D): the per-lane forms must give, for
+// every pair, the bits of the one-particle forms (so the batching cannot change a trajectory).
+TEST(PairNoiseBatch, LanesEqualOneParticleCalls) {
+  rng::Xoshiro256 gen(13, 4);
+  for (const NoiseDistribution dist : {NoiseDistribution::kGaussian, NoiseDistribution::kUniform}) {
+    // 5 particles with 0, 3, 12, 17 and 40 pairs: lane vectors mix particles and padding
+    const std::array<std::size_t, 5> counts{0, 3, 12, 17, 40};
+    std::vector<std::uint32_t> is, js;
+    for (std::size_t p = 0; p < counts.size(); ++p) {
+      for (std::size_t k = 0; k < counts[p]; ++k) {
+        is.push_back(static_cast<std::uint32_t>(1000 + p));
+        js.push_back(static_cast<std::uint32_t>(gen.uniform() * 4e9));
+      }
+    }
+    const std::size_t n = is.size();
+    const std::uint64_t step = (std::uint64_t{77} << 16) | 1;
+    std::array<std::vector<float>, 4> z;
+    for (auto& v : z) v.assign(n, 0.0f);
+    pair_noise_numbers_lanes(5, step, is.data(), js.data(), n, dist, z[0].data(), z[1].data(),
+                             z[2].data(), z[3].data());
+    std::size_t k0 = 0;
+    for (std::size_t p = 0; p < counts.size(); ++p) {
+      std::array<std::vector<float>, 4> w;
+      for (auto& v : w) v.assign(counts[p] + 1, 0.0f);
+      pair_noise_numbers(5, step, static_cast<std::uint32_t>(1000 + p), js.data() + k0, counts[p],
+                         dist, w[0].data(), w[1].data(), w[2].data(), w[3].data());
+      for (std::size_t k = 0; k < counts[p]; ++k) {
+        for (std::size_t c = 0; c < 4; ++c) ASSERT_EQ(z[c][k0 + k], w[c][k]) << p << " " << k;
+      }
+      k0 += counts[p];
+    }
+  }
+}
+
+TEST(SdpdPairBlock, LanesEqualOneParticleCalls) {
+  rng::Xoshiro256 gen(17, 5);
+  for (const bool lucy : {true, false}) {
+    SdpdPairParams pp;
+    pp.inv_h = 1.0 / 3.0;
+    pp.f_coef = 0.7;
+    pp.sqrt_f_coef = std::sqrt(0.7);
+    pp.lucy = lucy;
+    pp.friction = 1.6;
+    pp.delta_h_c0 = 3.0;
+    pp.eps_h2 = 0.09;
+    pp.noise = true;
+    pp.noise_amp = 0.2;
+    const std::array<std::size_t, 4> counts{5, 12, 1, 23};
+    std::size_t n = 0;
+    for (auto c : counts) n += c;
+    SdpdPairBlock lanes;
+    lanes.reserve(n);
+    std::vector<SdpdPairI> pis;
+    for (std::size_t p = 0, k = 0; p < counts.size(); ++p) {
+      const SdpdPairI pi{static_cast<std::uint32_t>(50 + 7 * p), 1 + gen.uniform(),
+                         0.9 + 0.2 * gen.uniform(), 1 + 0.01 * gen.uniform(), 0.95 + gen.uniform()};
+      pis.push_back(pi);
+      for (std::size_t e = 0; e < counts[p]; ++e, ++k) {
+        lanes.j[k] = static_cast<std::uint32_t>(gen.uniform() * 100);
+        double r2 = 0;
+        for (int a = 0; a < 3; ++a) {
+          lanes.x[a][k] = 3.4 * (gen.uniform() - 0.5);
+          lanes.v[a][k] = gen.uniform() - 0.5;
+          r2 += lanes.x[a][k] * lanes.x[a][k];
+        }
+        lanes.r2[k] = std::min(r2, 8.9);
+        for (auto* q : {&lanes.pd2_j, &lanes.inv_nd_j, &lanes.m_j, &lanes.vol_j, &lanes.rho_j,
+                        &lanes.sqrt_inv_nd_j})
+          (*q)[k] = 0.9 + 0.2 * gen.uniform();
+        lanes.i[k] = pi.i;
+        lanes.pd2_i[k] = pi.pd2;
+        lanes.inv_nd_i[k] = pi.inv_nd;
+        lanes.rho_i[k] = pi.rho;
+        lanes.sqrt_inv_nd_i[k] = pi.sqrt_inv_nd;
+      }
+    }
+    SdpdPairBlock one = lanes;  // same inputs, evaluated particle by particle
+    sdpd_pair_block_lanes<3>(pp, n, lanes);
+    std::size_t k0 = 0;
+    for (std::size_t p = 0; p < counts.size(); ++p) {
+      SdpdPairBlock part;
+      part.reserve(counts[p]);
+      auto copy = [&](const std::vector<double>& from, std::vector<double>& to) {
+        std::copy_n(from.begin() + static_cast<std::ptrdiff_t>(k0), counts[p], to.begin());
+      };
+      std::copy_n(one.j.begin() + static_cast<std::ptrdiff_t>(k0), counts[p], part.j.begin());
+      for (int a = 0; a < 3; ++a) {
+        copy(one.x[a], part.x[a]);
+        copy(one.v[a], part.v[a]);
+      }
+      copy(one.r2, part.r2);
+      copy(one.pd2_j, part.pd2_j);
+      copy(one.inv_nd_j, part.inv_nd_j);
+      copy(one.m_j, part.m_j);
+      copy(one.vol_j, part.vol_j);
+      copy(one.rho_j, part.rho_j);
+      copy(one.sqrt_inv_nd_j, part.sqrt_inv_nd_j);
+      sdpd_pair_block<3>(pp, pis[p], counts[p], part);
+      for (std::size_t k = 0; k < counts[p]; ++k) {
+        for (int a = 0; a < 3; ++a) ASSERT_EQ(lanes.force[a][k0 + k], part.force[a][k]);
+        ASSERT_EQ(lanes.drho[k0 + k], part.drho[k]);
+        ASSERT_EQ(lanes.f[k0 + k], part.f[k]);
+        ASSERT_EQ(lanes.amp[k0 + k], part.amp[k]);
+        ASSERT_EQ(lanes.amp_r[k0 + k], part.amp_r[k]);
+      }
+      k0 += counts[p];
     }
   }
 }

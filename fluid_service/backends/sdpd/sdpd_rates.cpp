@@ -38,14 +38,22 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
   const bool noise_on = with_noise && model_.temperature > 0;
   const bool summation = model_.density_mode == DensityMode::kSummation;
   ensure_neighbors(y.x);
+  const bool half = half_ok_ && slab_count_ > 0;  // no walls, species or reactions: pairs once
 
-  out.acc.assign(3 * n, 0.0);
-  if (noise_on) {
-    out.acc_noise.assign(3 * n, 0.0);
+  // (the half path sums into hacc_ and writes every entry of acc, acc_noise and drho at the end)
+  if (half) {
+    out.acc.resize(3 * n);
+    out.acc_noise.resize(noise_on ? 3 * n : 0);
+    out.drho.resize(n);
   } else {
-    out.acc_noise.clear();
+    out.acc.assign(3 * n, 0.0);
+    if (noise_on) {
+      out.acc_noise.assign(3 * n, 0.0);
+    } else {
+      out.acc_noise.clear();
+    }
+    out.drho.assign(n, 0.0);
   }
-  out.drho.assign(n, 0.0);
   out.dc.resize(y.c.size());
   for (auto& d : out.dc) d.assign(n, 0.0);
 
@@ -82,18 +90,36 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
       y.rho[i] = rho;
     }
   }
-  pd2_.resize(n);
-  inv_nd_.resize(n);
-  vol_.resize(n);
-  if (noise_on) sqrt_inv_nd_.resize(n);
+  if (half) {
+    hin_.resize(n);
+    hacc_.resize(n);
 #pragma omp parallel for schedule(static) if (ni > kMinParallel)
-  for (std::int64_t ii = 0; ii < ni; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    const double nd_inv = mass_[i] / y.rho[i];  // 1/d_i
-    inv_nd_[i] = nd_inv;
-    pd2_[i] = eos_.pressure(y.rho[i]) * nd_inv * nd_inv;
-    vol_[i] = mass_[i] / y.rho[i];
-    if (noise_on) sqrt_inv_nd_[i] = std::sqrt(nd_inv);
+    for (std::int64_t ii = 0; ii < ni; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      const double nd_inv = mass_[i] / y.rho[i];  // 1/d_i, bitwise the volume m_i/rho_i
+      HalfIn& p = hin_[i];
+      for (int a = 0; a < 3; ++a) p.v[a] = y.v[3 * i + a];
+      p.pd2 = eos_.pressure(y.rho[i]) * nd_inv * nd_inv;
+      p.inv_nd = nd_inv;
+      p.m = mass_[i];
+      p.rho = y.rho[i];
+      p.sqrt_inv_nd = noise_on ? std::sqrt(nd_inv) : 0.0;
+      hacc_[i] = HalfAcc{};
+    }
+  } else {
+    pd2_.resize(n);
+    inv_nd_.resize(n);
+    vol_.resize(n);
+    if (noise_on) sqrt_inv_nd_.resize(n);
+#pragma omp parallel for schedule(static) if (ni > kMinParallel)
+    for (std::int64_t ii = 0; ii < ni; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      const double nd_inv = mass_[i] / y.rho[i];  // 1/d_i
+      inv_nd_[i] = nd_inv;
+      pd2_[i] = eos_.pressure(y.rho[i]) * nd_inv * nd_inv;
+      vol_[i] = mass_[i] / y.rho[i];
+      if (noise_on) sqrt_inv_nd_[i] = std::sqrt(nd_inv);
+    }
   }
 
   // a = b = c_D eta with c_D = 2(D+2)/(D+3): 5/3 in 3D (LAMMPS, Espanol-Revenga with zeta = 0),
@@ -119,7 +145,7 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
   pair_params.noise_amp = noise_amp;
   pair_params.noise = noise_on;
 
-  if (half_ok_ && slab_count_ > 0) {  // no walls, species or reactions: each pair once
+  if (half) {
     evaluate_half<D>(y, noise_step, out, noise_on, pair_params, c_d);
     return;
   }

@@ -24,7 +24,8 @@ CellListBuilder::CellListBuilder(const Box& box, double cutoff) : pbox_(box), cu
                             format_value(2.0 * cutoff) +
                             "); enlarge the box or reduce smoothing_length");
     }
-    ncell_[a] = std::max(1, static_cast<int>(std::floor(len / cutoff)));
+    // cells of width >= cutoff / kCellReach: a neighbour lies at most kCellReach cells away
+    ncell_[a] = std::max(1, static_cast<int>(std::floor(kCellReach * len / cutoff)));
     ncell_[a] = std::min(ncell_[a], 1 << 20);
     inv_cell_[a] = ncell_[a] / len;
   }
@@ -65,7 +66,7 @@ void CellListBuilder::build(std::span<const double> positions, NeighborList& out
       return 1;
     }
     int cnt = 0;
-    for (int o = -1; o <= 1; ++o) {
+    for (int o = -kCellReach; o <= kCellReach; ++o) {
       int k = c + o;
       if (pbox_.periodic(a)) {
         k = (k + ncell_[a]) % ncell_[a];
@@ -78,46 +79,83 @@ void CellListBuilder::build(std::span<const double> positions, NeighborList& out
     }
     return cnt;
   };
+  // Candidate coordinates in cell order, so the scan of a cell reads contiguous memory (the
+  // same values as positions[3 j + a]: the distances and the list do not change).
+  std::array<std::vector<double>, 3> cpos;
+  for (int a = 0; a < 3; ++a) {
+    cpos[a].resize(n);
+    for (std::size_t k = 0; k < n; ++k) cpos[a][k] = positions[3 * cell_particles[k] + a];
+  }
+  const double* __restrict px = cpos[0].data();
+  const double* __restrict py = cpos[1].data();
+  const double* __restrict pz = cpos[2].data();
   const double rc2 = cutoff_ * cutoff_;
-  auto visit = [&](std::size_t i, auto&& emit) {
-    int cx[3], cy[3], cz[3];
+  // Appends the neighbours of i to `list` (unsorted). Branch-free: every candidate is written
+  // and the end advances only if it is within the cutoff (about 1 in 3 is: unpredictable).
+  auto scan = [&](std::size_t i, std::vector<std::uint32_t>& list) {
+    int cx[2 * kCellReach + 1], cy[2 * kCellReach + 1], cz[2 * kCellReach + 1];
     const int nx = axis_cells(0, coord[i][0], cx);
     const int ny = axis_cells(1, coord[i][1], cy);
     const int nz = axis_cells(2, coord[i][2], cz);
-    const double* xi = &positions[3 * i];
+    std::size_t cells[(2 * kCellReach + 1) * (2 * kCellReach + 1) * (2 * kCellReach + 1)];
+    std::size_t nc = 0, candidates = 0;
     for (int iz = 0; iz < nz; ++iz) {
       for (int iy = 0; iy < ny; ++iy) {
         for (int ix = 0; ix < nx; ++ix) {
           const std::size_t c =
               (static_cast<std::size_t>(cz[iz]) * ncell_[1] + cy[iy]) * ncell_[0] + cx[ix];
-          for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-            const std::uint32_t j = cell_particles[k];
-            if (j == i) continue;
-            double d[3] = {xi[0] - positions[3 * j], xi[1] - positions[3 * j + 1],
-                           xi[2] - positions[3 * j + 2]};
-            pbox_.minimum_image(d);
-            if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc2) emit(j);
-          }
+          cells[nc++] = c;
+          candidates += cell_start[c + 1] - cell_start[c];
         }
       }
     }
+    std::size_t pos = list.size();
+    list.resize(pos + candidates);
+    std::uint32_t* __restrict dst = list.data();
+    const double* xi = &positions[3 * i];
+    for (std::size_t q = 0; q < nc; ++q) {
+      const std::size_t c = cells[q];
+      for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
+        const std::uint32_t j = cell_particles[k];
+        double d[3] = {xi[0] - px[k], xi[1] - py[k], xi[2] - pz[k]};
+        pbox_.minimum_image(d);
+        dst[pos] = j;
+        pos += static_cast<std::size_t>((d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < rc2) & (j != i));
+      }
+    }
+    list.resize(pos);
   };
+  // One scan per particle (a counting pass and a filling pass scanned every cell twice): each
+  // thread appends its static, contiguous range of particles to its own buffer, then the
+  // buffers are copied behind the prefix sum. Lists are sorted, so the result is the same for
+  // any thread count.
   out.offsets.assign(n + 1, 0);
   const auto ni = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) if (ni > kMinParallel)
-  for (std::int64_t i = 0; i < ni; ++i) {
-    std::uint32_t cnt = 0;
-    visit(static_cast<std::size_t>(i), [&](std::uint32_t) { ++cnt; });
-    out.offsets[static_cast<std::size_t>(i) + 1] = cnt;
-  }
-  for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
-  out.indices.resize(out.offsets[n]);
-#pragma omp parallel for schedule(static) if (ni > kMinParallel)
-  for (std::int64_t i = 0; i < ni; ++i) {
-    const auto iu = static_cast<std::size_t>(i);
-    std::uint32_t pos = out.offsets[iu];
-    visit(iu, [&](std::uint32_t j) { out.indices[pos++] = j; });
-    std::sort(out.indices.begin() + out.offsets[iu], out.indices.begin() + out.offsets[iu + 1]);
+  const auto nt = static_cast<std::size_t>(max_threads());
+  std::vector<std::vector<std::uint32_t>> buf(nt);
+  std::vector<std::int64_t> first(nt, ni);
+#pragma omp parallel if (ni > kMinParallel)
+  {
+    const auto t = static_cast<std::size_t>(thread_index());
+    std::vector<std::uint32_t>& mine = buf[t];
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < ni; ++i) {
+      if (first[t] == ni) first[t] = i;
+      const std::size_t start = mine.size();
+      scan(static_cast<std::size_t>(i), mine);
+      std::sort(mine.begin() + static_cast<std::ptrdiff_t>(start), mine.end());
+      out.offsets[static_cast<std::size_t>(i) + 1] =
+          static_cast<std::uint32_t>(mine.size() - start);
+    }
+#pragma omp single
+    {
+      for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
+      out.indices.resize(out.offsets[n]);
+    }
+    if (!mine.empty()) {
+      std::copy(mine.begin(), mine.end(),
+                out.indices.begin() + out.offsets[static_cast<std::size_t>(first[t])]);
+    }
   }
 }
 

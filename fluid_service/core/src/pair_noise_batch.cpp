@@ -76,8 +76,9 @@ inline void box_muller(std::uint32_t a, std::uint32_t b, float& c_out, float& s_
 #endif
 
 SADR_NOISE_CLONES
-void numbers_impl(std::uint64_t seed, std::uint64_t step, std::uint32_t i, const std::uint32_t* j,
-                  std::size_t n, bool gaussian, float* z0, float* z1, float* z2, float* z3) {
+void numbers_impl(std::uint64_t seed, std::uint64_t step, std::uint32_t i_one,
+                  const std::uint32_t* i_lanes, const std::uint32_t* j, std::size_t n,
+                  bool gaussian, float* z0, float* z1, float* z2, float* z3) {
   const auto k0 = static_cast<std::uint32_t>(seed);
   const auto k1 = static_cast<std::uint32_t>(seed >> 32);
   const auto c2 = static_cast<std::uint32_t>(step);
@@ -85,7 +86,7 @@ void numbers_impl(std::uint64_t seed, std::uint64_t step, std::uint32_t i, const
                            static_cast<std::uint32_t>((step >> 32) & 0xFFFFU);
   constexpr std::size_t kChunk = 64;
   alignas(64) std::uint32_t b0[kChunk], b1[kChunk], b2[kChunk], b3[kChunk];
-  alignas(64) std::uint32_t jc[kChunk];
+  alignas(64) std::uint32_t ic[kChunk], jc[kChunk];
   alignas(64) float t0[kChunk], t1[kChunk], t2[kChunk], t3[kChunk];
   for (std::size_t base = 0; base < n; base += kChunk) {
     const std::size_t m = n - base < kChunk ? n - base : kChunk;
@@ -93,9 +94,13 @@ void numbers_impl(std::uint64_t seed, std::uint64_t step, std::uint32_t i, const
     // A 2D particle has ~12 pairs per evaluation, and GCC 12 runs a partial vector as a
     // scalar epilogue (measured: the avx512f clone was slower than avx2 in 2D without it).
     const std::size_t mpad = (m + 15) / 16 * 16;
-    for (std::size_t k = 0; k < mpad; ++k) jc[k] = j[base + (k < m ? k : m - 1)];
+    for (std::size_t k = 0; k < mpad; ++k) {
+      const std::size_t src = base + (k < m ? k : m - 1);
+      jc[k] = j[src];
+      ic[k] = i_lanes ? i_lanes[src] : i_one;
+    }
     for (std::size_t k = 0; k < mpad; ++k) {  // Philox4x32-10 (rng::Philox4x32), one pair per lane
-      const std::uint32_t jj = jc[k];
+      const std::uint32_t i = ic[k], jj = jc[k];
       std::uint32_t x0 = i < jj ? i : jj, x1 = i < jj ? jj : i, x2 = c2, x3 = c3;
       std::uint32_t key0 = k0, key1 = k1;
 #pragma GCC unroll 10
@@ -144,7 +149,15 @@ void numbers_impl(std::uint64_t seed, std::uint64_t step, std::uint32_t i, const
 void pair_noise_numbers(std::uint64_t seed, std::uint64_t step, std::uint32_t i,
                         const std::uint32_t* j, std::size_t n, NoiseDistribution distribution,
                         float* z0, float* z1, float* z2, float* z3) {
-  numbers_impl(seed, step, i, j, n, distribution == NoiseDistribution::kGaussian, z0, z1, z2, z3);
+  numbers_impl(seed, step, i, nullptr, j, n, distribution == NoiseDistribution::kGaussian, z0, z1,
+               z2, z3);
+}
+
+void pair_noise_numbers_lanes(std::uint64_t seed, std::uint64_t step, const std::uint32_t* i,
+                              const std::uint32_t* j, std::size_t n, NoiseDistribution distribution,
+                              float* z0, float* z1, float* z2, float* z3) {
+  numbers_impl(seed, step, 0, i, j, n, distribution == NoiseDistribution::kGaussian, z0, z1, z2,
+               z3);
 }
 
 }  // namespace sadr::fluid

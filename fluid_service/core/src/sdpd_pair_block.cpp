@@ -8,17 +8,18 @@ namespace sadr::fluid {
 void SdpdPairBlock::reserve(std::size_t n) {
   if (j.size() >= n) return;
   j.resize(n);
+  i.resize(n);
   for (auto* a : {&x, &v, &force}) {
     for (auto& c : *a) c.resize(n);
   }
   for (auto* a : {&r2, &pd2_j, &inv_nd_j, &m_j, &vol_j, &rho_j, &sqrt_inv_nd_j, &drho, &r, &f, &amp,
-                  &amp_r}) {
+                  &amp_r, &pd2_i, &inv_nd_i, &rho_i, &sqrt_inv_nd_i}) {
     a->resize(n);
   }
 }
 
 std::size_t SdpdPairBlock::bytes() const {
-  return j.capacity() * (4 + 8 * 3 * 3 + 8 * 12);
+  return j.capacity() * (4 + 4 + 8 * 3 * 3 + 8 * 16);
 }
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
@@ -30,7 +31,9 @@ std::size_t SdpdPairBlock::bytes() const {
 
 namespace {
 
-template <int D, bool kLucy>
+// kLanes: the i quantities are read per lane (sdpd_pair_block_lanes) instead of broadcast;
+// the arithmetic is the same, so a pair gives the same bits either way.
+template <int D, bool kLucy, bool kLanes>
 SADR_PAIR_CLONES void block_impl(const SdpdPairParams& p, const SdpdPairI& pi, std::size_t n,
                                  SdpdPairBlock& b) {
   const double* __restrict r2v = b.r2.data();
@@ -52,10 +55,15 @@ SADR_PAIR_CLONES void block_impl(const SdpdPairParams& p, const SdpdPairI& pi, s
   double* __restrict f1 = b.force[1].data();
   double* __restrict f2 = b.force[2].data();
   const double inv_h = p.inv_h, fc = p.f_coef, friction = p.friction;
-  const double pd2_i = pi.pd2, ind_i = pi.inv_nd, rho_i = pi.rho;
+  const double* __restrict pd2iv = b.pd2_i.data();
+  const double* __restrict indiv = b.inv_nd_i.data();
+  const double* __restrict rhoiv = b.rho_i.data();
   const double two_dhc0 = 2.0 * p.delta_h_c0, eps = p.eps_h2;
 #pragma GCC ivdep
   for (std::size_t k = 0; k < n; ++k) {
+    const double pd2_i = kLanes ? pd2iv[k] : pi.pd2;
+    const double ind_i = kLanes ? indiv[k] : pi.inv_nd;
+    const double rho_i = kLanes ? rhoiv[k] : pi.rho;
     const double r2 = r2v[k];
     const double r = std::sqrt(r2);
     const double inv_r2 = 1.0 / r2;
@@ -79,10 +87,13 @@ SADR_PAIR_CLONES void block_impl(const SdpdPairParams& p, const SdpdPairI& pi, s
     const std::uint32_t* __restrict jj = b.j.data();
     double* __restrict amp = b.amp.data();
     double* __restrict amp_r = b.amp_r.data();
-    const double sfc = p.sqrt_f_coef, na = p.noise_amp, sq_i = pi.sqrt_inv_nd;
-    const std::uint32_t i = pi.i;
+    const double* __restrict sqiv = b.sqrt_inv_nd_i.data();
+    const std::uint32_t* __restrict iiv = b.i.data();
+    const double sfc = p.sqrt_f_coef, na = p.noise_amp;
 #pragma GCC ivdep
     for (std::size_t k = 0; k < n; ++k) {
+      const double sq_i = kLanes ? sqiv[k] : pi.sqrt_inv_nd;
+      const std::uint32_t i = kLanes ? iiv[k] : pi.i;
       const double r = ro[k];
       const double s = 1.0 - r * inv_h;
       const double sf = kLucy ? sfc * s : sfc * s * std::sqrt(s);
@@ -100,9 +111,19 @@ template <int D>
 void sdpd_pair_block(const SdpdPairParams& p, const SdpdPairI& pi, std::size_t n,
                      SdpdPairBlock& b) {
   if (p.lucy) {
-    block_impl<D, true>(p, pi, n, b);
+    block_impl<D, true, false>(p, pi, n, b);
   } else {
-    block_impl<D, false>(p, pi, n, b);
+    block_impl<D, false, false>(p, pi, n, b);
+  }
+}
+
+template <int D>
+void sdpd_pair_block_lanes(const SdpdPairParams& p, std::size_t n, SdpdPairBlock& b) {
+  const SdpdPairI unused{0, 0, 0, 0, 0};
+  if (p.lucy) {
+    block_impl<D, true, true>(p, unused, n, b);
+  } else {
+    block_impl<D, false, true>(p, unused, n, b);
   }
 }
 
@@ -112,5 +133,8 @@ template void sdpd_pair_block<2>(const SdpdPairParams&, const SdpdPairI&, std::s
                                  SdpdPairBlock&);
 template void sdpd_pair_block<3>(const SdpdPairParams&, const SdpdPairI&, std::size_t,
                                  SdpdPairBlock&);
+template void sdpd_pair_block_lanes<1>(const SdpdPairParams&, std::size_t, SdpdPairBlock&);
+template void sdpd_pair_block_lanes<2>(const SdpdPairParams&, std::size_t, SdpdPairBlock&);
+template void sdpd_pair_block_lanes<3>(const SdpdPairParams&, std::size_t, SdpdPairBlock&);
 
 }  // namespace sadr::fluid
