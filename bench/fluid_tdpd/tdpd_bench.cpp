@@ -4,9 +4,12 @@
 /// figure is per core) at rho = 4, r_c = r_cc = 1.58, k_B T = 1, dt = 0.01, for ~1e4 and ~1e5
 /// particles and 1, 4, 25 species, next to LAMMPS `pair tdpd` measured on this machine
 /// (233k particle-steps/CPU-s with 1 species, 112k with 4).
-/// Usage: fluid_tdpd_bench [out.json] [--quick] [--small] [--uniform]  (OMP_NUM_THREADS=1)
-///   --quick: 5 timed steps; --small: only the ~1e4-particle configurations;
-///   --uniform: FluidModel::noise = kUniform (uniform pair noise of unit variance).
+/// Usage: fluid_tdpd_bench [out.json] [--quick] [--small|--large] [--uniform] [--skin S]
+///   [--steps K]  (OMP_NUM_THREADS=1)
+///   --quick: 5 timed steps; --small / --large: only the ~1e4- / ~1e5-particle configurations;
+///   --uniform: FluidModel::noise = kUniform (uniform pair noise of unit variance);
+///   --skin S: tdpd.skin (Verlet skin / r_c; default: the backend's); --steps K: warm-up steps
+///   before timing (default 20; more steps let the particles mix, as in a long run).
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -24,10 +27,11 @@ struct Result {
   int steps;
   double cpu_s;
   double wall_s;
-  double rate;  ///< particle-steps per CPU-second
+  double rate;                ///< particle-steps per CPU-second
+  std::uint64_t list_builds;  ///< neighbour-list builds in the timed steps
 };
 
-Result run(int per_axis, int nspecies, int steps, bool uniform) {
+Result run(int per_axis, int nspecies, int steps, bool uniform, double skin, int warmup) {
   using namespace sadr;
   using namespace sadr::fluid;
   const double a = std::cbrt(0.25);
@@ -41,6 +45,7 @@ Result run(int per_axis, int nspecies, int steps, bool uniform) {
   m.temperature = 1.0;
   m.seed = 1;
   if (uniform) m.noise = NoiseDistribution::kUniform;
+  if (skin > 0.0) m.backend_parameters["skin"] = skin;
   for (int s = 0; s < nspecies; ++s) {
     SpeciesSpec sp;
     sp.name = "S";
@@ -70,7 +75,8 @@ Result run(int per_axis, int nspecies, int steps, bool uniform) {
   TdpdBackend b;
   b.initialize(m, st, conc);
   std::uint64_t step = 0;
-  for (; step < 20; ++step) b.advance(step, 0.01);  // warm-up (thermalise, first lists)
+  for (; step < static_cast<std::uint64_t>(warmup); ++step) b.advance(step, 0.01);  // thermalise
+  const std::uint64_t builds0 = b.list_builds();
   const std::clock_t c0 = std::clock();
   timespec w0{}, w1{};
   std::timespec_get(&w0, TIME_UTC);
@@ -79,7 +85,13 @@ Result run(int per_axis, int nspecies, int steps, bool uniform) {
   const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   const double wall = static_cast<double>(w1.tv_sec - w0.tv_sec) +
                       1e-9 * static_cast<double>(w1.tv_nsec - w0.tv_nsec);
-  return {n, nspecies, steps, cpu, wall, static_cast<double>(n) * steps / cpu};
+  return {n,
+          nspecies,
+          steps,
+          cpu,
+          wall,
+          static_cast<double>(n) * steps / cpu,
+          b.list_builds() - builds0};
 }
 
 }  // namespace
@@ -88,15 +100,24 @@ int main(int argc, char** argv) {
   std::string out = "tdpd_bench.json";
   bool quick = false;
   bool small_only = false;
+  bool large_only = false;
   bool uniform = false;
+  double skin = 0.0;
+  int warmup = 20;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--quick") {
       quick = true;
     } else if (arg == "--small") {
       small_only = true;
+    } else if (arg == "--large") {
+      large_only = true;
     } else if (arg == "--uniform") {
       uniform = true;
+    } else if (arg == "--skin" && i + 1 < argc) {
+      skin = std::stod(argv[++i]);
+    } else if (arg == "--steps" && i + 1 < argc) {
+      warmup = std::stoi(argv[++i]);
     } else {
       out = arg;
     }
@@ -104,18 +125,18 @@ int main(int argc, char** argv) {
   const double lammps[2] = {233e3, 112e3};  // 1 and 4 species, this machine
   std::vector<Result> res;
   for (const int per_axis : {22, 46}) {  // 10648 and 97336 particles
-    if (small_only && per_axis > 22) break;
+    if ((small_only && per_axis > 22) || (large_only && per_axis == 22)) continue;
     for (const int ns : {1, 4, 25}) {
       const int steps = quick ? 5 : (per_axis == 22 ? 100 : 20);
-      res.push_back(run(per_axis, ns, steps, uniform));
+      res.push_back(run(per_axis, ns, steps, uniform, skin, warmup));
       const auto& r = res.back();
       const double ref = ns == 1 ? lammps[0] : ns == 4 ? lammps[1] : 0.0;
       std::printf(
           "N=%zu species=%d: %.0f particle-steps/CPU-s (LAMMPS pair tdpd: %s) cpu %.2fs wall "
-          "%.2fs\n",
+          "%.2fs, %llu list builds in %d steps\n",
           r.particles, ns, r.rate,
           ref > 0 ? (std::to_string(static_cast<int>(ref / 1e3)) + "k").c_str() : "n/a", r.cpu_s,
-          r.wall_s);
+          r.wall_s, static_cast<unsigned long long>(r.list_builds), r.steps);
     }
   }
   FILE* f = std::fopen(out.c_str(), "w");
@@ -125,8 +146,8 @@ int main(int argc, char** argv) {
   }
   std::fprintf(f,
                "{\n  \"benchmark\": \"tdpd\",\n  \"units\": \"particle-steps per CPU-second\",\n"
-               "  \"noise\": \"%s\",\n",
-               uniform ? "uniform" : "gaussian");
+               "  \"noise\": \"%s\",\n  \"skin\": %g,\n  \"warmup_steps\": %d,\n",
+               uniform ? "uniform" : "gaussian", skin, warmup);
   std::fprintf(
       f, "  \"lammps_pair_tdpd\": {\"species_1\": %.0f, \"species_4\": %.0f},\n  \"runs\": [\n",
       lammps[0], lammps[1]);
@@ -134,9 +155,9 @@ int main(int argc, char** argv) {
     const auto& r = res[k];
     std::fprintf(f,
                  "    {\"particles\": %zu, \"species\": %d, \"steps\": %d, \"cpu_s\": %.4f, "
-                 "\"wall_s\": %.4f, \"rate\": %.1f}%s\n",
+                 "\"wall_s\": %.4f, \"rate\": %.1f, \"list_builds\": %llu}%s\n",
                  r.particles, r.species, r.steps, r.cpu_s, r.wall_s, r.rate,
-                 k + 1 < res.size() ? "," : "");
+                 static_cast<unsigned long long>(r.list_builds), k + 1 < res.size() ? "," : "");
   }
   std::fprintf(f, "  ]\n}\n");
   std::fclose(f);

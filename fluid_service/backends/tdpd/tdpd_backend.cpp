@@ -18,7 +18,9 @@ namespace sadr::fluid {
 namespace {
 
 constexpr std::string_view kMagic = "sadr.tdpd";
-constexpr std::uint32_t kVersion = 1;
+// 2: + list reference positions (the half-pair sums follow the slabs of the last list build)
+// 3: the stored rates exclude the effective-wall Dirichlet term (integrated exactly)
+constexpr std::uint32_t kVersion = 3;
 constexpr std::uint64_t kInitialEval = std::uint64_t{1} << 63;  // noise "sub" flag
 
 std::string num(double v) {
@@ -126,7 +128,8 @@ void TdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   flux_stale_ = false;
   time_ = 0.0;
   list_ref_x_.clear();
-  nlist_ = NeighborList{};
+  half_ = tdpd::HalfList{};
+  list_builds_ = 0;
   initialized_ = true;
 }
 
@@ -138,10 +141,7 @@ void TdpdBackend::ensure_neighbors() const {
     pbox_.minimum_image(d);
     rebuild = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > skin_half2_;
   }
-  if (!rebuild) return;
-  builder_->build(x_, nlist_);
-  list_ref_x_ = x_;
-  build_half_pairs();
+  if (rebuild) rebuild_neighbors(x_);
 }
 
 StabilityLimits TdpdBackend::current_limits() const {
@@ -245,7 +245,15 @@ StepReport TdpdBackend::advance(std::uint64_t step_index, double time_step) {
       pbox_.wrap(&x_[3 * i]);
       for (const int s : transported) c_[s][i] += 0.5 * dt * q_[s][i];
     }
-    if (walls_.enabled()) reflections_ += walls_.reflect(x_, v_, v_pred_, wall_);
+    if (walls_.enabled()) {
+      reflections_ += walls_.reflect(x_, v_, v_pred_, wall_);
+      // The stiff Dirichlet wall term (k dt = 6.8 at the phi cap for kappa = 8.7, dt = 0.01) is
+      // not in q_: it is integrated exactly over dt at x(t + dt), on the values at which the
+      // rates are evaluated. These (midpoint) values then follow C <- W_dt(C + dt P C) (P: the
+      // explicit pair rates), convex combinations within the li2015 diffusion limit: no
+      // overshoot of C_w (docs/tdpd.md, "Stiffness"). Neumann sources stay in q_.
+      walls_.relax_dirichlet(x_, wall_, transported, kappa_, dt, c_);
+    }
     if (buffers_.enabled()) buffers_.apply(x_, transported, c_);
     evaluate(x_, v_pred_, c_, key, dt, f_new_, q_new_);
 #pragma omp parallel for schedule(static) if (n >= kMinParallel)
@@ -285,23 +293,22 @@ std::vector<double> TdpdBackend::densities() const {
   if (rho_valid_) return rho_;
   // Kernel summation rho_i = sum_j m_j W(r_ij) (self included), Lucy kernel of support r_c,
   // masses 1: a number density [1/length^d] on the current (up-to-date within skin) list.
-  std::vector<double> rho(n_, 0.0);
+  // Serial over the forward half list (rare: before the first evaluation after initialize()
+  // or restore(); evaluations keep rho_ up to date).
+  std::vector<double> rho(n_, kernel_.w0());
   const double rc2 = model_.smoothing_length * model_.smoothing_length;
-  const auto n = static_cast<std::int64_t>(n_);
   ensure_neighbors();
-#pragma omp parallel for schedule(static) if (n >= kMinParallel)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    double sum = kernel_.w0();
-    auto add = [&](std::size_t j) {
+  for (std::size_t i = 0; i < n_; ++i) {
+    for (const std::uint32_t j : half_.list.of(i)) {
       double d[3] = {x_[3 * i] - x_[3 * j], x_[3 * i + 1] - x_[3 * j + 1],
                      x_[3 * i + 2] - x_[3 * j + 2]};
       pbox_.minimum_image(d);
       const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-      if (r2 < rc2) sum += kernel_.w(std::sqrt(r2));
-    };
-    for (const std::uint32_t j : nlist_.of(i)) add(j);
-    rho[i] = sum;
+      if (r2 >= rc2) continue;
+      const double w = kernel_.w(std::sqrt(r2));
+      rho[i] += w;
+      rho[j] += w;
+    }
   }
   return rho;
 }
@@ -342,7 +349,8 @@ void TdpdBackend::evaluate_current(std::uint64_t noise_step, double dt, std::vec
                                    std::vector<std::vector<double>>& flux) {
   require_initialized("evaluate_current()");
   flux.assign(c_.size(), {});
-  evaluate(x_, v_, c_, noise_step << 16, dt, force, flux);
+  evaluate(x_, v_, c_, noise_step << 16, dt, force, flux, /*flux_only=*/false,
+           /*dirichlet_rate=*/true);
 }
 
 std::string TdpdBackend::save() const {
@@ -360,6 +368,7 @@ std::string TdpdBackend::save() const {
   w.put_vector(f_);
   for (const auto& c : c_) w.put_vector(c);
   for (const auto& q : q_) w.put_vector(q);
+  w.put_vector(list_ref_x_);
   return w.take();
 }
 
@@ -368,9 +377,9 @@ void TdpdBackend::restore(std::string_view blob) {
   BlobReader r(blob);
   if (r.get_string() != kMagic) throw InvalidArgument("tdpd: blob is not a tDPD state");
   const auto version = r.get<std::uint32_t>();
-  if (version != kVersion) {
-    throw InvalidArgument("tdpd: blob version " + std::to_string(version) + ", expected " +
-                          std::to_string(kVersion));
+  if (version < 1 || version > kVersion) {
+    throw InvalidArgument("tdpd: blob version " + std::to_string(version) +
+                          ", this build reads 1 to " + std::to_string(kVersion));
   }
   if (r.get<std::uint64_t>() != n_ || r.get<std::uint64_t>() != c_.size()) {
     throw InvalidArgument("tdpd: blob from a model with a different particle or species count");
@@ -384,16 +393,25 @@ void TdpdBackend::restore(std::string_view blob) {
   std::vector<std::vector<double>> c(c_.size()), q(c_.size());
   for (auto& cs : c) cs = r.get_vector<double>(n_);
   for (auto& qs : q) qs = r.get_vector<double>(n_);
+  std::vector<double> ref;
+  if (version >= 2) {
+    ref = r.get_vector<double>();
+    if (!ref.empty() && ref.size() != 3 * n_)
+      throw InvalidArgument("tdpd: list reference positions in the blob have the wrong size");
+  }
   if (!r.at_end()) throw InvalidArgument("tdpd: trailing bytes in state blob");
   time_ = t;
   have_forces_ = hf;
-  flux_stale_ = fs;
+  // Rates of versions < 3 may contain the Dirichlet wall term: recomputed at the next step.
+  flux_stale_ = fs || (version < 3 && walls_.enabled());
   x_ = std::move(x);
   v_ = std::move(v);
   f_ = std::move(f);
   c_ = std::move(c);
   q_ = std::move(q);
-  list_ref_x_.clear();  // rebuilt on demand; pair sums do not depend on when
+  // The same list (and slabs) as the saved run: the half-pair sums are then bit-identical.
+  list_ref_x_.clear();
+  if (!ref.empty()) rebuild_neighbors(ref);
   rho_valid_ = false;
 }
 

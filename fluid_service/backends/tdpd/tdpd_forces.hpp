@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file tdpd_forces.hpp
-/// Pair weights of tDPD (li2015 eqs 3-6) and their analytic integrals used by the
-/// stability limits. Everything here is header-only and branch-light for the pair loop.
+/// Analytic integrals of the tDPD pair weights (li2015 eqs 3-6) used by the stability limits,
+/// and the sound speed.
 #pragma once
 
 #include <algorithm>
@@ -10,23 +10,8 @@
 
 namespace sadr::fluid::tdpd {
 
-/// Weights of one pair at distance r < r_c [length].
-struct PairWeights {
-  double w_c;  ///< 1 - r/r_c (conservative)
-  double w_r;  ///< (1 - r/r_c)^(s1/2) (random); w_D = w_r^2
-};
-
-/// @param q r / r_c in [0, 1); @param half_s1 s1 / 2.
-inline PairWeights weights(double q, double half_s1) {
-  const double wc = 1.0 - q;
-  return {wc, half_s1 == 0.5 ? std::sqrt(wc) : std::pow(wc, half_s1)};
-}
-
-/// Fickian weight w_DC = (1 - r/r_cc)^2 (li2015 eq 6, s2 = 2); 0 beyond r_cc.
-inline double flux_weight(double r, double inv_r_cc) {
-  const double s = 1.0 - r * inv_r_cc;
-  return s > 0.0 ? s * s : 0.0;
-}
+// The pair weights themselves (w_C, w_R = w_C^(s1/2), w_DC) are evaluated in the SIMD pair
+// block, tdpd_pair_block.cpp.
 
 /// Integral of (1 - r/R)^p over a d-ball of radius R [length^d] (d = 1, 2, 3, p > -1).
 inline double ball_integral(int d, double radius, double p) {

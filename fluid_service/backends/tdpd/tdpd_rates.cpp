@@ -1,62 +1,70 @@
 // SPDX-License-Identifier: MIT
 /// \file tdpd_rates.cpp
-/// The tDPD pair loop in two passes over the full (sorted) neighbour list:
-///  1. per pair (i < j) once: the scalar force factor F_ij / r_ij (conservative, dissipative,
-///     random: the expensive pow, Philox and Box-Muller), the flux weight w_DC and the density
-///     kernel W, stored in a half-pair array;
-///  2. per particle i, a gather over its full list reading the stored pair scalars
-///     (F_i = sum_j s_ij (x_i - x_j), dC_i = sum_j kappa w_ij (C_j - C_i), rho_i = sum_j W_ij).
-/// Both passes are per-particle loops with a fixed order (no scatter, no atomics), so results
-/// are identical on any thread count, and s_ij is one number for both particles, so the pair
-/// forces are exactly antisymmetric (total momentum conserved to rounding).
+/// The tDPD pair loop over a half ("forward") neighbour list: every pair is evaluated ONCE and
+/// writes +F to i and -F to j (likewise the density kernel and the species fluxes).
+///
+/// Determinism without atomics (the scheme of the SDPD half-pair path): the list
+/// (tdpd_cells.hpp) keeps j in the same slab (a layer of cells along the last axis) with j > i,
+/// or 1..2 slabs ahead, so a pair spans at most 3 consecutive slabs. Phase p runs the slabs
+/// s = p mod 3 in parallel; slab s writes only to slabs s..s+2, so no two threads write the same
+/// particle, and each particle receives its contributions in an order fixed by (phase, slab,
+/// member, list entry): independent of the thread count. The slabs and list order depend on
+/// the positions at the last list build, which the state blob stores, so
+/// restarts stay bit-exact. One number s_ij = F_ij / r_ij serves both particles, so the pair
+/// forces are exact negatives (total momentum conserved to rounding); the species fluxes are
+/// +-w (C_j - C_i) per pair (total amount conserved to rounding).
+///
+/// Per particle i: (1) minimum image and r^2 of every forward entry, compacted branch-free to
+/// the pairs within the cutoff; (2) their velocity differences; (3) the thermal noise of the
+/// block (core pair_noise_numbers: Philox and Box-Muller in SIMD lanes); (4) the pair scalars
+/// (tdpd::pair_scalars, SIMD); (5) one scatter pass. Species are packed particle-major for the
+/// duration of the evaluation, so the per-pair species loop is contiguous.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
-#include "sadr/common/rng.hpp"
+#include "sadr/common/status.hpp"
+#include "sadr/fluid/pair_noise_batch.hpp"
 #include "sadr/fluid/parallel.hpp"
 #include "sadr/fluid/tdpd_backend.hpp"
 #include "tdpd_forces.hpp"
+#include "tdpd_pair_block.hpp"
 
 namespace sadr::fluid {
 
-void TdpdBackend::build_half_pairs() const {
-  const std::size_t n = nlist_.size();
-  first_gt_.resize(n);
-  half_off_.resize(n + 1);
-  half_off_[0] = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto nb = nlist_.of(i);
-    const auto it = std::upper_bound(nb.begin(), nb.end(), static_cast<std::uint32_t>(i));
-    first_gt_[i] = nlist_.offsets[i] + static_cast<std::uint32_t>(it - nb.begin());
-    half_off_[i + 1] = half_off_[i] + (nlist_.offsets[i + 1] - first_gt_[i]);
-  }
-  pair_of_entry_.resize(nlist_.indices.size());
-  const auto ni = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) if (ni >= kMinParallel)
-  for (std::int64_t ii = 0; ii < ni; ++ii) {
-    const auto i = static_cast<std::uint32_t>(ii);
-    for (std::uint32_t e = nlist_.offsets[i]; e < nlist_.offsets[i + 1]; ++e) {
-      const std::uint32_t j = nlist_.indices[e];
-      if (j > i) {
-        pair_of_entry_[e] = half_off_[i] + (e - first_gt_[i]);
-      } else {  // the pair is stored with j: find i in j's (sorted) list
-        const auto nb = nlist_.of(j);
-        const auto it = std::lower_bound(nb.begin(), nb.end(), i);
-        const auto ej = nlist_.offsets[j] + static_cast<std::uint32_t>(it - nb.begin());
-        pair_of_entry_[e] = half_off_[j] + (ej - first_gt_[j]);
+void TdpdBackend::rebuild_neighbors(const std::vector<double>& ref) const {
+  tdpd::build_half_list(pbox_, builder_->cutoff(), ref, half_);
+  list_ref_x_ = ref;
+  ++list_builds_;
+}
+
+template <class PerParticle>
+void TdpdBackend::slab_phases(PerParticle&& per_particle) const {
+  [[maybe_unused]] const auto ni = static_cast<std::int64_t>(n_);
+  constexpr std::uint32_t colours = 3;  // a pair spans at most 3 consecutive slabs
+  // One parallel region for the colours (the implicit barrier of each `omp for` orders them).
+#pragma omp parallel if (ni >= kMinParallel)
+  {
+    tdpd::PairBlock block;
+    block.reserve(half_.max_len);
+    for (std::uint32_t phase = 0; phase < colours; ++phase) {
+      const auto tasks =
+          static_cast<std::int64_t>((half_.slab_count + colours - 1 - phase) / colours);
+#pragma omp for schedule(dynamic, 1)
+      for (std::int64_t t = 0; t < tasks; ++t) {
+        const auto s = static_cast<std::size_t>(phase + colours * t);
+        for (std::uint32_t k = half_.slab_start[s]; k < half_.slab_start[s + 1]; ++k)
+          per_particle(half_.slab_members[k], block);
       }
     }
   }
-  const std::size_t np = half_off_[n];
-  pair_force_.resize(np);
-  pair_flux_.resize(np);
-  pair_kernel_.resize(np);
 }
 
 void TdpdBackend::evaluate(const std::vector<double>& x, const std::vector<double>& v,
                            const std::vector<std::vector<double>>& c, std::uint64_t noise_key,
                            double dt, std::vector<double>& force,
-                           std::vector<std::vector<double>>& flux, bool flux_only) {
+                           std::vector<std::vector<double>>& flux, bool flux_only,
+                           bool dirichlet_rate) {
   ensure_neighbors();
   switch (model_.box.dimension) {
     case 1:
@@ -74,7 +82,7 @@ void TdpdBackend::evaluate(const std::vector<double>& x, const std::vector<doubl
       walls_.add_forces(x, v, wall_, model_.seed, noise_key & ~(std::uint64_t{1} << 63),
                         static_cast<std::uint32_t>(noise_key >> 63), dt, force);
     }
-    walls_.add_fluxes(x, wall_, species_.transported(), kappa_, c, dt, flux);
+    walls_.add_fluxes(x, wall_, species_.transported(), kappa_, c, flux, dirichlet_rate);
   }
   if (buffers_.enabled()) buffers_.zero_inflow_flux(x, species_.transported(), flux);
 }
@@ -84,115 +92,165 @@ void TdpdBackend::evaluate_dim(const std::vector<double>& x, const std::vector<d
                                const std::vector<std::vector<double>>& c, std::uint64_t noise_key,
                                double dt, std::vector<double>& force,
                                std::vector<std::vector<double>>& flux, bool flux_only) {
-  const auto n = static_cast<std::int64_t>(n_);
+  const std::size_t n = n_;
+  const auto ni = static_cast<std::int64_t>(n);
   const double rc = model_.smoothing_length;
-  const double rc2 = rc * rc;
-  const double inv_rc = 1.0 / rc;
-  const double rcc2 = r_cc_ * r_cc_;
-  const double inv_rcc = 1.0 / r_cc_;
-  const double cut2 = flux_only ? rcc2 : rc2;
-  const double a = params_.a;
-  const double gamma = params_.gamma;
-  const double half_s1 = 0.5 * params_.s1;
+  const double cut2 = flux_only ? r_cc_ * r_cc_ : rc * rc;
+  tdpd::PairConsts pc{};
+  pc.inv_rc = 1.0 / rc;
+  pc.rcc2 = r_cc_ * r_cc_;
+  pc.inv_rcc = 1.0 / r_cc_;
+  pc.a = params_.a;
+  pc.gamma = params_.gamma;
+  pc.half_s1 = 0.5 * params_.s1;
   // Random force sigma w_R xi / sqrt(dt); sigma = 0 (k_B T = 0) draws nothing.
-  const double sigma_dt = sigma_ > 0.0 ? sigma_ / std::sqrt(dt) : 0.0;
-  // FluidModel::noise = kUniform: xi = sqrt(3) (2u - 1), zero mean and unit variance (Groot &
-  // Warren 1997 use uniform random numbers), one Philox draw and no log/sqrt/cos per pair.
-  const bool uniform = model_.noise == NoiseDistribution::kUniform;
-  const rng::CounterRng rng{model_.seed};
-  const auto sub = static_cast<std::uint32_t>(noise_key >> 63);
+  pc.sigma_dt = sigma_ > 0.0 ? sigma_ / std::sqrt(dt) : 0.0;
+  pc.kernel_w0 = kernel_.w0();
+  const bool noise = !flux_only && pc.sigma_dt > 0.0;
+  // The noise of (seed, key, min(i,j), max(i,j)): Philox words 0, 1 give z[0] (the regular
+  // evaluation), words 2, 3 give z[2] (the initial evaluation after initialize/restore, flagged
+  // in bit 63 of the key), so the two never share a number. kUniform: unit-variance uniform.
+  const bool initial = (noise_key >> 63) != 0;
   const std::uint64_t key = noise_key & ~(std::uint64_t{1} << 63);
   const auto& transported = species_.transported();
-  const auto& g = model_.gravity;
-  const auto* idx = nlist_.indices.data();
+  const std::size_t nt = transported.size();
+  const bool buffers = buffers_.enabled();
 
-  // Pass 1: pair scalars for i < j.
-#pragma omp parallel for schedule(static) if (n >= kMinParallel)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::uint32_t>(ii);
-    const double* xi = &x[3 * i];
-    const double* vi = &v[3 * i];
-    std::uint32_t h = half_off_[i];
-    for (std::uint32_t e = first_gt_[i]; e < nlist_.offsets[i + 1]; ++e, ++h) {
-      const std::uint32_t j = idx[e];
-      double d[3] = {0.0, 0.0, 0.0};
-      for (int k = 0; k < D; ++k) d[k] = xi[k] - x[3 * j + k];
-      pbox_.minimum_image(d);
-      double r2 = 0.0;
-      for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
-      if (r2 >= cut2 || r2 == 0.0) {
-        pair_force_[h] = 0.0;
-        pair_flux_[h] = 0.0;
-        pair_kernel_[h] = 0.0;
-        continue;
+  // Particle-major species: cp[i nt + t] = C, qp the flux sums; okp = 1 where the pair term
+  // from that particle counts (wall roles free / Dirichlet), 0 else (only with walls).
+  cp_.resize(n * nt);
+  qp_.assign(n * nt, 0.0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& cs = c[static_cast<std::size_t>(transported[t])];
+    for (std::size_t i = 0; i < n; ++i) cp_[i * nt + t] = cs[i];
+  }
+  if (any_wall_) {
+    okp_.resize(n * nt);
+    for (std::size_t t = 0; t < nt; ++t) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto role = species_.role(transported[t], i);
+        okp_[i * nt + t] =
+            role == SpeciesTransport::Role::kFree || role == SpeciesTransport::Role::kDirichlet
+                ? 1.0
+                : 0.0;
       }
-      const double r = std::sqrt(r2);
-      pair_flux_[h] = r2 < rcc2 ? tdpd::flux_weight(r, inv_rcc) : 0.0;
-      if (flux_only) continue;
-      pair_kernel_[h] = kernel_.w(r);
-      const double inv_r = 1.0 / r;
-      const auto w = tdpd::weights(r * inv_rc, half_s1);
-      double ev = 0.0;
-      for (int k = 0; k < D; ++k) ev += d[k] * (vi[k] - v[3 * j + k]);
-      ev *= inv_r;
-      double fmag = a * w.w_c - gamma * w.w_r * w.w_r * ev;
-      if (sigma_dt > 0.0) {
-        const double xi_ij =
-            uniform ? 1.7320508075688772 *
-                          (2.0 * rng.uniform2(rng::Purpose::kPairNoise, key, i, j, sub)[0] - 1.0)
-                    : rng.normal2(rng::Purpose::kPairNoise, key, i, j, sub)[0];
-        fmag += sigma_dt * w.w_r * xi_ij;
-      }
-      pair_force_[h] = fmag * inv_r;
     }
   }
+  fsum_.assign(flux_only ? 0 : 3 * n, 0.0);
+  if (!flux_only) rho_.assign(n, kernel_.w0());
+  const double* xp = x.data();
+  const double* vp = v.data();
+  const double* cpp = cp_.data();
+  const double* okpp = any_wall_ ? okp_.data() : nullptr;
+  double* fp = fsum_.data();
+  double* qpp = qp_.data();
+  double* rhop = rho_.data();
 
-  // Pass 2: per-particle gather in list order.
-  if (!flux_only) force.assign(3 * n_, 0.0);
-  for (auto& q : flux) q.assign(n_, 0.0);
-  if (!flux_only) rho_.resize(n_);
-#pragma omp parallel for schedule(static) if (n >= kMinParallel)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    double fi[3] = {0.0, 0.0, 0.0};
-    double rho = kernel_.w0();
-    const double* xi = &x[3 * i];
-    const bool wall = wall_[i] != 0;
-    for (std::uint32_t e = nlist_.offsets[i]; e < nlist_.offsets[i + 1]; ++e) {
-      const std::uint32_t h = pair_of_entry_[e];
-      const double w = pair_flux_[h];
-      if (!flux_only) {
-        const double s = pair_force_[h];
-        rho += pair_kernel_[h];
-        if (s != 0.0 && !wall) {
-          const std::uint32_t j = idx[e];
-          double d[3] = {0.0, 0.0, 0.0};
-          for (int k = 0; k < D; ++k) d[k] = xi[k] - x[3 * j + k];
-          pbox_.minimum_image(d);
-          for (int k = 0; k < D; ++k) fi[k] += s * d[k];
-        }
+  slab_phases([&](std::uint32_t i, tdpd::PairBlock& b) {
+    const double* xi = &xp[3 * i];
+    std::uint32_t* __restrict bj = b.j.data();
+    double* __restrict bd[3] = {b.d[0].data(), b.d[1].data(), b.d[2].data()};
+    double* __restrict br2 = b.r2.data();
+    std::size_t m = 0;
+    // (1) compaction: each entry is written at slot m, m advances if 0 < r < cutoff (the
+    // cut-off branch is unpredictable: about half the entries lie in the skin)
+    for (const std::uint32_t j : half_.list.of(i)) {
+      double d[D];
+      for (int k = 0; k < D; ++k) d[k] = xi[k] - xp[3 * j + k];
+      pbox_.minimum_image_first<D>(d);
+      double r2 = 0.0;
+      for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
+      bj[m] = j;
+      for (int k = 0; k < D; ++k) bd[k][m] = d[k];
+      br2[m] = r2;
+      m += (r2 < cut2) & (r2 > 0.0) ? 1 : 0;
+    }
+    if (m == 0) return;
+    // (2) velocity differences of the accepted pairs
+    if (!flux_only) {
+      const double* vi = &vp[3 * i];
+      for (int k = 0; k < D; ++k) {
+        double* __restrict dv = b.dv[k].data();
+        for (std::size_t p = 0; p < m; ++p) dv[p] = vi[k] - vp[3 * bj[p] + k];
       }
-      if (w != 0.0 && !wall) {
-        const std::uint32_t j = idx[e];
-        if (buffers_.enabled() && buffers_.across_seam(xi, &x[3 * j])) continue;
-        for (const int sp : transported) {
-          if (any_wall_) {
-            const auto role = species_.role(sp, j);
-            if (role != SpeciesTransport::Role::kFree &&
-                role != SpeciesTransport::Role::kDirichlet) {
-              continue;
-            }
-          }
-          flux[sp][i] += kappa_[sp] * w * (c[sp][j] - c[sp][i]);
+    }
+    // (3) noise, (4) pair scalars
+    const float* xi_noise = b.z[initial ? 2 : 0].data();
+    if (noise) {
+      pair_noise_numbers(model_.seed, key, i, bj, m, model_.noise, b.z[0].data(), b.z[1].data(),
+                         b.z[2].data(), b.z[3].data());
+    } else if (!flux_only) {
+      std::fill_n(b.z[0].data(), m, 0.0f);
+      xi_noise = b.z[0].data();
+    }
+    tdpd::pair_scalars<D>(pc, m, flux_only, xi_noise, b);
+    double* wdc = b.wdc.data();
+    if (buffers) {  // no flux across the inflow / outflow seam
+      for (std::size_t p = 0; p < m; ++p) {
+        if (buffers_.across_seam(xi, &xp[3 * bj[p]])) wdc[p] = 0.0;
+      }
+    }
+    // (5) scatter: i sums in block order, j gets the exact negatives
+    double fi[D] = {};
+    double rho_i = 0.0;
+    const double* ci = &cpp[i * nt];
+    double* qi = &qpp[i * nt];
+    const double* oki = okpp ? &okpp[i * nt] : nullptr;
+    for (std::size_t p = 0; p < m; ++p) {
+      const std::uint32_t j = bj[p];
+      if (!flux_only) {
+        const double s = b.s[p];
+        for (int k = 0; k < D; ++k) {
+          const double fk = s * bd[k][p];
+          fi[k] += fk;
+          fp[3 * j + k] -= fk;
+        }
+        rho_i += b.w[p];
+        rhop[j] += b.w[p];
+      }
+      const double w = wdc[p];
+      if (w == 0.0) continue;
+      const double* cj = &cpp[j * nt];
+      double* qj = &qpp[j * nt];
+      if (oki) {
+        const double* okj = &okpp[j * nt];
+        for (std::size_t t = 0; t < nt; ++t) {
+          const double dc = w * (cj[t] - ci[t]);
+          qi[t] += okj[t] * dc;
+          qj[t] -= oki[t] * dc;
+        }
+      } else {
+        for (std::size_t t = 0; t < nt; ++t) {
+          const double dc = w * (cj[t] - ci[t]);
+          qi[t] += dc;
+          qj[t] -= dc;
         }
       }
     }
     if (!flux_only) {
-      rho_[i] = rho;
-      // Frozen wall particles feel no force; their species stay fixed (Dirichlet) or unused.
-      for (int k = 0; k < D; ++k) force[3 * i + k] = wall ? 0.0 : fi[k] + g[k];
+      for (int k = 0; k < D; ++k) fp[3 * i + k] += fi[k];
+      rhop[i] += rho_i;
     }
-    if (!wall && species_.has_reactions()) species_.add_reactions(i, c, flux);
+  });
+
+  // Unpack: forces with gravity, fluxes times kappa; frozen wall particles feel no force and
+  // get no flux (their species stay fixed: Dirichlet, or unused).
+  if (!flux_only) force.resize(3 * n);
+  for (auto& q : flux) q.assign(n, 0.0);
+  const auto& g = model_.gravity;
+#pragma omp parallel for schedule(static) if (ni >= kMinParallel)
+  for (std::int64_t ii = 0; ii < ni; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const bool wall = wall_[i] != 0;
+    if (!flux_only) {
+      for (int k = 0; k < 3; ++k) force[3 * i + k] = wall || k >= D ? 0.0 : fp[3 * i + k] + g[k];
+    }
+    if (wall) continue;
+    for (std::size_t t = 0; t < nt; ++t) {
+      const auto sp = static_cast<std::size_t>(transported[t]);
+      flux[sp][i] = kappa_[sp] * qpp[i * nt + t];
+    }
+    if (species_.has_reactions()) species_.add_reactions(i, c, flux);
   }
   if (!flux_only) rho_valid_ = true;
 }

@@ -4,6 +4,7 @@
 #include "sadr/fluid/tdpd_walls.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <string>
 
@@ -120,9 +121,8 @@ void EffectiveWalls::add_fluxes(const std::vector<double>& x,
                                 const std::vector<std::uint8_t>& frozen,
                                 const std::vector<int>& transported,
                                 const std::vector<double>& kappa,
-                                const std::vector<std::vector<double>>& c, double dt,
-                                std::vector<std::vector<double>>& flux) const {
-  const double half_dt = 0.5 * dt;
+                                const std::vector<std::vector<double>>& c,
+                                std::vector<std::vector<double>>& flux, bool with_dirichlet) const {
   const std::size_t n = frozen.size();
   std::size_t n_fluid = 0;
   for (std::size_t i = 0; i < n; ++i) n_fluid += frozen[i] ? 0 : 1;
@@ -144,13 +144,12 @@ void EffectiveWalls::add_fluxes(const std::vector<double>& x,
       const auto su = static_cast<std::size_t>(s);
       const WallCondition& wc = p.species[su];
       if (wc.type == WallCondition::Type::kDirichlet) {
+        if (!with_dirichlet) continue;  // integrated exactly by relax_dirichlet()
         const double kf = kappa[su] * two_pi_rho;
         for (std::size_t i = 0; i < n; ++i) {
           const double h = p.sign * (x[3 * i + k] - p.position);
           if (frozen[i] || h >= rcc_) continue;
-          const double k_rate = kf * phi(h);
-          const double k_eff = -std::expm1(-k_rate * half_dt) / half_dt;
-          flux[su][i] += k_eff * (wc.value - c[su][i]);
+          flux[su][i] += kf * phi(h) * (wc.value - c[su][i]);
         }
       } else if (wc.type == WallCondition::Type::kNeumann && phibar_sum > 0.0) {
         // Total inward amount per time q A (amount = sum_i C_i / rho_n): exact for any
@@ -161,6 +160,30 @@ void EffectiveWalls::add_fluxes(const std::vector<double>& x,
           if (frozen[i] || h >= rcc_) continue;
           flux[su][i] += scale * phibar(h);
         }
+      }
+    }
+  }
+}
+
+void EffectiveWalls::relax_dirichlet(const std::vector<double>& x,
+                                     const std::vector<std::uint8_t>& frozen,
+                                     const std::vector<int>& transported,
+                                     const std::vector<double>& kappa, double tau,
+                                     std::vector<std::vector<double>>& c) const {
+  const double two_pi_rho = 2.0 * std::numbers::pi * rho_;
+  const std::size_t n = frozen.size();
+  for (const WallPlane& p : planes_) {
+    const auto k = static_cast<std::size_t>(p.axis);
+    for (const int s : transported) {
+      const auto su = static_cast<std::size_t>(s);
+      const WallCondition& wc = p.species[su];
+      if (wc.type != WallCondition::Type::kDirichlet) continue;
+      const double kf = kappa[su] * two_pi_rho * tau;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double h = p.sign * (x[3 * i + k] - p.position);
+        if (frozen[i] || h >= rcc_) continue;
+        // Exact solution of dC/dt = k (C_w - C) over tau: a convex combination of C and C_w.
+        c[su][i] = wc.value + (c[su][i] - wc.value) * std::exp(-kf * phi(h));
       }
     }
   }

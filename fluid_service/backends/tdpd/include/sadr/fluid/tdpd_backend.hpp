@@ -32,6 +32,7 @@
 #include "sadr/fluid/periodic_box.hpp"
 #include "sadr/fluid/species_transport.hpp"
 #include "sadr/fluid/stability.hpp"
+#include "sadr/fluid/tdpd_cells.hpp"
 #include "sadr/fluid/tdpd_walls.hpp"
 
 namespace sadr::fluid {
@@ -84,7 +85,9 @@ class TdpdBackend final : public FluidBackend {
   /// Stability limits at the current state [time] (acoustic, viscous, body_force, diffusion).
   [[nodiscard]] StabilityLimits current_limits() const;
   /// Pair forces (3N, [force]) and fluxes ([species][N], [C/time]) at the current state with
-  /// the noise of (noise_step, dt) (testing aid; velocities as stored).
+  /// the noise of (noise_step, dt) (testing aid; velocities as stored). With effective walls
+  /// the fluxes include the wall terms, the Dirichlet one as the instantaneous rate
+  /// kappa 2 pi rho phi(h) (C_w - C) (advance() integrates that term exactly instead).
   void evaluate_current(std::uint64_t noise_step, double dt, std::vector<double>& force,
                         std::vector<std::vector<double>>& flux);
 
@@ -93,6 +96,8 @@ class TdpdBackend final : public FluidBackend {
   [[nodiscard]] static double fickian_slope_ideal(double rho, double r_cc);
   /// The effective walls (empty unless effective_walls; testing aid).
   [[nodiscard]] const tdpd::EffectiveWalls& effective_walls() const { return walls_; }
+  /// Neighbour-list builds since initialize() (benchmark / testing aid; not saved).
+  [[nodiscard]] std::uint64_t list_builds() const { return list_builds_; }
   /// Particles reflected at the effective walls so far.
   [[nodiscard]] std::uint64_t wall_reflections() const { return reflections_; }
 
@@ -100,15 +105,18 @@ class TdpdBackend final : public FluidBackend {
   void evaluate(const std::vector<double>& x, const std::vector<double>& v,
                 const std::vector<std::vector<double>>& c, std::uint64_t noise_key, double dt,
                 std::vector<double>& force, std::vector<std::vector<double>>& flux,
-                bool flux_only = false);
+                bool flux_only = false, bool dirichlet_rate = false);
   template <int D>
   void evaluate_dim(const std::vector<double>& x, const std::vector<double>& v,
                     const std::vector<std::vector<double>>& c, std::uint64_t noise_key, double dt,
                     std::vector<double>& force, std::vector<std::vector<double>>& flux,
                     bool flux_only);
   void ensure_neighbors() const;
-  /// Half-pair bookkeeping of the current list (tdpd_rates.cpp): pair index of every entry.
-  void build_half_pairs() const;
+  /// Builds the half list and its slabs at positions `ref` (tdpd_cells.hpp).
+  void rebuild_neighbors(const std::vector<double>& ref) const;
+  /// Runs per_particle(i, PairBlock&) over all particles in the slab-colour order.
+  template <class PerParticle>
+  void slab_phases(PerParticle&& per_particle) const;
   void check_health(std::uint64_t step_index, std::uint32_t substep) const;
   void require_initialized(const char* what) const;
   /// Kernel-summed number densities rho_i = sum_j W(r_ij) (masses 1) [1/length^d].
@@ -119,9 +127,11 @@ class TdpdBackend final : public FluidBackend {
   FluidModel model_;
   PeriodicBox pbox_;
   Kernel kernel_;
-  std::unique_ptr<CellListBuilder> builder_;
-  mutable NeighborList nlist_;              ///< cache, rebuilt when a particle moved > skin/2
-  mutable std::vector<double> list_ref_x_;  ///< positions at the last list build
+  std::unique_ptr<CellListBuilder> builder_;  ///< checks the box against the list cutoff
+  /// Forward half list and slabs (tdpd_cells.hpp), rebuilt when a particle moved > skin/2.
+  mutable tdpd::HalfList half_;
+  mutable std::vector<double> list_ref_x_;  ///< positions at the last list build (saved)
+  mutable std::uint64_t list_builds_ = 0;
   double skin_half2_ = 0;
   SpeciesTransport species_;
   std::vector<double> kappa_;  ///< per species [1/time]
@@ -140,13 +150,9 @@ class TdpdBackend final : public FluidBackend {
   bool flux_stale_ = false;   ///< q_ predates a set_concentrations()
   // Scratch.
   std::vector<double> v_pred_, f_new_;
-  mutable std::vector<std::uint32_t> first_gt_;       ///< first list entry with j > i
-  mutable std::vector<std::uint32_t> half_off_;       ///< N + 1 offsets of the i < j pairs
-  mutable std::vector<std::uint32_t> pair_of_entry_;  ///< list entry -> half-pair index
-  mutable std::vector<double> pair_force_;            ///< F_ij / r_ij [force/length]
-  mutable std::vector<double> pair_flux_;             ///< w_DC(r_ij)
-  mutable std::vector<double> pair_kernel_;           ///< W(r_ij) [1/length^d]
-  std::vector<double> rho_;  ///< kernel-summed number density at the last evaluation
+  std::vector<double> cp_, qp_, okp_;  ///< particle-major C, flux sums, role masks
+  std::vector<double> fsum_;           ///< pair force sums
+  std::vector<double> rho_;            ///< kernel-summed number density at the last evaluation
   bool rho_valid_ = false;
   bool any_wall_ = false;
   std::vector<std::vector<double>> q_new_;

@@ -73,15 +73,21 @@ class EffectiveWalls {
                   const std::vector<std::uint8_t>& frozen, std::uint64_t seed,
                   std::uint64_t noise_key, std::uint32_t sub, double dt,
                   std::vector<double>& force) const;
-  /// Adds the effective boundary fluxes of the transported species. The Dirichlet term is a
-  /// linear relaxation with rate k = kappa 2 pi rho phi(h), stiff near the wall (k dt ~ 4 at
-  /// the phi cap for kappa = 5, dt = 0.01); it enters with k_eff = (1 - exp(-k dt/2)) / (dt/2),
-  /// so that each concentration half-step of the integrator relaxes that term exactly
-  /// (k_eff -> k for k dt -> 0; unconditionally stable).
+  /// Adds the effective boundary fluxes of the transported species: the Neumann source
+  /// q rho_N A Phibar(h_i) / sum_j Phibar(h_j) and, only if with_dirichlet (the reported rates of
+  /// TdpdBackend::evaluate_current()), the Dirichlet rate k (C_w - C_i), k = kappa 2 pi rho
+  /// phi(h). The integrator does not take the Dirichlet term as a flux (it is stiff: k dt = 6.8
+  /// at the phi cap for kappa = 8.7, dt = 0.01); it applies relax_dirichlet() instead.
   void add_fluxes(const std::vector<double>& x, const std::vector<std::uint8_t>& frozen,
                   const std::vector<int>& transported, const std::vector<double>& kappa,
-                  const std::vector<std::vector<double>>& c, double dt,
-                  std::vector<std::vector<double>>& flux) const;
+                  const std::vector<std::vector<double>>& c, std::vector<std::vector<double>>& flux,
+                  bool with_dirichlet) const;
+  /// Integrates the Dirichlet wall term dC_i/dt = k(h_i) (C_w - C_i) exactly over tau at fixed
+  /// positions: C_i <- C_w + (C_i - C_w) exp(-k(h_i) tau), plane after plane. Unconditionally
+  /// stable and bounded (a convex combination of C_i and C_w; the maximum principle holds).
+  void relax_dirichlet(const std::vector<double>& x, const std::vector<std::uint8_t>& frozen,
+                       const std::vector<int>& transported, const std::vector<double>& kappa,
+                       double tau, std::vector<std::vector<double>>& c) const;
   /// Bounce-back reflection (x -> 2 x_w - x, v -> -v, v_pred -> -v_pred) of particles that
   /// crossed a plane. Returns the number reflected.
   std::size_t reflect(std::vector<double>& x, std::vector<double>& v, std::vector<double>& v_pred,
