@@ -48,8 +48,9 @@ Result run(int per_axis, int nspecies, int steps, bool uniform, double skin, int
   if (skin > 0.0) m.backend_parameters["skin"] = skin;
   for (int s = 0; s < nspecies; ++s) {
     SpeciesSpec sp;
-    sp.name = "S";
-    sp.name += std::to_string(s);
+    char name[16];  // not "S" + to_string(s): GCC 12 -O1+ASan warns -Wrestrict (false positive)
+    std::snprintf(name, sizeof name, "S%d", s);
+    sp.name = name;
     sp.diffusivity = 0.5;  // kappa
     m.species.push_back(sp);
   }
