@@ -206,10 +206,7 @@ void SdpdBackend::summation_half(Y& y) {
       double sum = 0;
       for (const std::uint32_t j : nlist_.of(i)) {
         double d[D];
-        for (int a = 0; a < D; ++a) d[a] = xi[a] - x[3 * j + a];
-        pbox_.minimum_image_first<D>(d);
-        double r2 = 0;
-        for (int a = 0; a < D; ++a) r2 += d[a] * d[a];
+        const double r2 = pbox_.offset_first<D>(xi, &x[3 * j], d);
         if (r2 >= h2) continue;
         const double w = kernel_.w(std::sqrt(r2));
         sum += mass_[j] * w;
@@ -276,10 +273,7 @@ void SdpdBackend::evaluate_half(const Y& y, std::uint64_t noise_step, Rates& out
         const double* xi = &x[3 * i];
         for (const std::uint32_t j : nlist_.of(i)) {  // forward pairs only (rebuild_neighbors)
           double d[D];
-          for (int a = 0; a < D; ++a) d[a] = xi[a] - x[3 * j + a];
-          pbox_.minimum_image_first<D>(d);
-          double r2 = 0;
-          for (int a = 0; a < D; ++a) r2 += d[a] * d[a];
+          const double r2 = pbox_.offset_first<D>(xi, &x[3 * j], d);
           bj[m] = j;
           for (int a = 0; a < D; ++a) bx[a][m] = d[a];
           br2[m] = r2;

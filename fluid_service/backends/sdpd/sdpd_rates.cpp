@@ -172,10 +172,7 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
         std::size_t m = 0;
         for (const std::uint32_t j : nlist_.of(i)) {
           double d[D];
-          for (int a = 0; a < D; ++a) d[a] = xi[a] - x[3 * j + a];
-          pbox_.minimum_image_first<D>(d);
-          double r2 = 0;
-          for (int a = 0; a < D; ++a) r2 += d[a] * d[a];
+          const double r2 = pbox_.offset_first<D>(xi, &x[3 * j], d);
           if (r2 >= h2) continue;
           b.j[m] = j;
           for (int a = 0; a < D; ++a) {

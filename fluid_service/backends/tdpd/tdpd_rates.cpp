@@ -156,10 +156,7 @@ void TdpdBackend::evaluate_dim(const std::vector<double>& x, const std::vector<d
     // cut-off branch is unpredictable: about half the entries lie in the skin)
     for (const std::uint32_t j : half_.list.of(i)) {
       double d[D];
-      for (int k = 0; k < D; ++k) d[k] = xi[k] - xp[3 * j + k];
-      pbox_.minimum_image_first<D>(d);
-      double r2 = 0.0;
-      for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
+      const double r2 = pbox_.offset_first<D>(xi, &xp[3 * j], d);
       bj[m] = j;
       for (int k = 0; k < D; ++k) bd[k][m] = d[k];
       br2[m] = r2;

@@ -34,6 +34,16 @@ class PeriodicBox {
       d[a] = t;
     }
   }
+  /// d = the minimum image of x_i - x_j on the first D axes; returns |d|^2 (the common first
+  /// step of every pair gather).
+  template <int D>
+  double offset_first(const double* xi, const double* xj, double* d) const {
+    for (int a = 0; a < D; ++a) d[a] = xi[a] - xj[a];
+    minimum_image_first<D>(d);
+    double r2 = 0;
+    for (int a = 0; a < D; ++a) r2 += d[a] * d[a];
+    return r2;
+  }
   /// Replaces d (= x_i - x_j) by its minimum image on periodic axes (|d_a| <= L_a/2).
   void minimum_image(double* d) const {
     for (int a = 0; a < 3; ++a) {
