@@ -33,7 +33,7 @@ std::uint32_t RdmeState::fire_open(std::uint32_t i, double u) {
     }
   }
   std::int64_t* counts = counts_.data();
-  const DiffusionGraph::Edge* edges = loop_edges_.data();
+  const DiffusionGraph::Edge* edges = graph_.edges.data();
   for (int s : diffusing_) {
     std::int64_t* xs = counts + static_cast<std::size_t>(s) * n_;
     const std::int64_t x = xs[i];

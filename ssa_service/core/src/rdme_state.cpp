@@ -85,11 +85,6 @@ bool RdmeState::update_graph(const ParticleState& particles) {
   }
   has_walls_ = std::any_of(graph_.is_wall.begin(), graph_.is_wall.end(),
                            [](std::uint8_t w) { return w != 0; });
-  if (has_walls_) {
-    loop_edges_.clear();
-  } else {
-    loop_edges_.assign(graph_.edges.begin(), graph_.edges.end());
-  }
   inputs_.dimension = particles.dimension;
   inputs_.positions = particles.positions;
   inputs_.densities = particles.densities;

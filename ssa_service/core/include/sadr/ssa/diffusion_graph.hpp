@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/ssa/huge_pages.hpp"
 #include "sadr/ssa/model.hpp"
 
 namespace sadr::ssa {
@@ -57,12 +58,14 @@ class DiffusionGraph {
   // particles come first, in [row_start[i], split[i]).
   std::vector<std::uint32_t> row_start;  ///< N + 1
   std::vector<std::uint32_t> split;      ///< N
-  std::vector<Edge> edges;               ///< out-edges, row by row
-  std::vector<double> sum_all;           ///< sum_j D_ij over all out-edges [1/L^2]
-  std::vector<double> sum_nowall;        ///< sum_j D_ij over non-wall targets [1/L^2]
-  std::vector<double> volume;            ///< V_i = m_i / rho_i [L^d]
-  std::vector<std::uint8_t> is_wall;     ///< 1 for ParticleKind::kWall
-  std::vector<ParticleKind> kind;        ///< particle kind
+  /// Out-edges, row by row; on huge pages because the event loop reads the firing voxel's row
+  /// at random (see huge_pages.hpp).
+  std::vector<Edge, detail::HugePageAllocator<Edge>> edges;
+  std::vector<double> sum_all;        ///< sum_j D_ij over all out-edges [1/L^2]
+  std::vector<double> sum_nowall;     ///< sum_j D_ij over non-wall targets [1/L^2]
+  std::vector<double> volume;         ///< V_i = m_i / rho_i [L^d]
+  std::vector<std::uint8_t> is_wall;  ///< 1 for ParticleKind::kWall
+  std::vector<ParticleKind> kind;     ///< particle kind
   std::vector<double>
       wall_distance;  ///< distance to the nearest wall particle within h, else +inf [L]
   int dimension = 3;

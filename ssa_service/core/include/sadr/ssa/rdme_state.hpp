@@ -151,7 +151,7 @@ class RdmeState {
   void prefetch(std::uint32_t i) const {
     const VoxelRecord& v = voxels_[i];  // a demand load of the record
     if (v.begin < v.end) {
-      const DiffusionGraph::Edge* edges = has_walls_ ? graph_.edges.data() : loop_edges_.data();
+      const DiffusionGraph::Edge* edges = graph_.edges.data();
       __builtin_prefetch(edges + v.begin);      // first and last line
       __builtin_prefetch(edges + (v.end - 1));  // of the edge row
     }
@@ -199,9 +199,6 @@ class RdmeState {
   std::vector<VoxelRecord, detail::HugePageAllocator<VoxelRecord>> voxels_;
   ParticleState inputs_;
   std::vector<std::int64_t, detail::HugePageAllocator<std::int64_t>> counts_;
-  /// Copy of graph_.edges in huge pages for the no-wall event loop (fire_open(),
-  /// prefetch()): the graph's own array is a plain vector, mostly on 4 KiB pages.
-  std::vector<DiffusionGraph::Edge, detail::HugePageAllocator<DiffusionGraph::Edge>> loop_edges_;
   std::vector<double> kappa_;
   std::vector<int> diffusing_;
   std::vector<std::uint8_t> reservoir_;  ///< per species: has a WallReservoir
