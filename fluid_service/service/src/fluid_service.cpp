@@ -158,7 +158,8 @@ void FluidServiceHandler::apply_inflows() {
   FluidBackend& b = backend();
   b.read_state(scratch_);
   for (const Inflow& in : inflows_) {
-    std::vector<double> c = b.concentrations(in.species);
+    std::vector<double>& c = inflow_values_;  // buffer reused: no allocation per step
+    c = b.concentrations(in.species);
     bool changed = false;
     for (std::size_t i = 0; i < scratch_.size(); ++i) {
       if (c[i] != in.box.concentration && in.box.contains(&scratch_.positions[3 * i])) {

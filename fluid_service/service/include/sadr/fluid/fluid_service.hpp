@@ -58,7 +58,8 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
     int species = 0;  ///< deterministic species index
     wire::InflowBox box;
   };
-  std::vector<Inflow> inflows_;  ///< applied after Init and after every Advance
+  std::vector<Inflow> inflows_;        ///< applied after Init and after every Advance
+  std::vector<double> inflow_values_;  ///< apply_inflows() scratch
 };
 
 }  // namespace sadr::fluid
