@@ -89,20 +89,34 @@ TEST(OrchestratorCli, ProcessesEmbeddedAndRemoteGiveIdenticalFrames) {
   if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
 }
 
-TEST(OrchestratorCli, OpenMpWaitsArePassiveUnlessTheUserChose) {
-  // sadr re-executes itself with OMP_WAIT_POLICY=passive when it is unset
-  // (common/openmp_env.hpp); the run manifest records what the run saw.
+TEST(OrchestratorCli, OpenMpWaitsAreBoundedUnlessTheUserChose) {
+  // sadr re-executes itself with OMP_WAIT_POLICY=passive and GOMP_SPINCOUNT=10000
+  // when neither is set (common/openmp_env.hpp); the run manifest records what the
+  // run saw, and a user's choice of either variable is left alone.
   const fs::path d = scratch("omp");
   const fs::path scene = write_scene(d, annihilation_scene(0.02, "[0.02]", 0));
   const std::string run_cmd = bin("sadr") + " run " + scene.string() + " -q --embedded -o ";
-  ASSERT_EQ(run("env -u OMP_WAIT_POLICY " + run_cmd + (d / "a").string(), d / "a.log"), 0)
+  ASSERT_EQ(
+      run("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT " + run_cmd + (d / "a").string(), d / "a.log"),
+      0)
       << read_file(d / "a.log");
-  EXPECT_NE(read_file(d / "a" / "run.json").find("\"OMP_WAIT_POLICY\": \"passive\""),
-            std::string::npos);
-  ASSERT_EQ(run("OMP_WAIT_POLICY=active " + run_cmd + (d / "b").string(), d / "b.log"), 0)
+  const std::string a = read_file(d / "a" / "run.json");
+  EXPECT_NE(a.find("\"OMP_WAIT_POLICY\": \"passive\""), std::string::npos) << a;
+  EXPECT_NE(a.find("\"GOMP_SPINCOUNT\": \"10000\""), std::string::npos) << a;
+  ASSERT_EQ(run("env -u GOMP_SPINCOUNT OMP_WAIT_POLICY=active " + run_cmd + (d / "b").string(),
+                d / "b.log"),
+            0)
       << read_file(d / "b.log");
-  EXPECT_NE(read_file(d / "b" / "run.json").find("\"OMP_WAIT_POLICY\": \"active\""),
-            std::string::npos);
+  const std::string b = read_file(d / "b" / "run.json");
+  EXPECT_NE(b.find("\"OMP_WAIT_POLICY\": \"active\""), std::string::npos) << b;
+  EXPECT_NE(b.find("\"GOMP_SPINCOUNT\": \"\""), std::string::npos) << b;
+  ASSERT_EQ(
+      run("env -u OMP_WAIT_POLICY GOMP_SPINCOUNT=0 " + run_cmd + (d / "c").string(), d / "c.log"),
+      0)
+      << read_file(d / "c.log");
+  const std::string c = read_file(d / "c" / "run.json");
+  EXPECT_NE(c.find("\"OMP_WAIT_POLICY\": \"\""), std::string::npos) << c;
+  EXPECT_NE(c.find("\"GOMP_SPINCOUNT\": \"0\""), std::string::npos) << c;
   if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
 }
 

@@ -11,7 +11,7 @@
 namespace sadr::orchestrator {
 
 RunManifest::RunManifest() : sadr_version(kVersion), protocol_version(kProtocolVersion) {
-  for (const char* name : {"OMP_NUM_THREADS", "OMP_WAIT_POLICY"}) {
+  for (const char* name : {"OMP_NUM_THREADS", "OMP_WAIT_POLICY", "GOMP_SPINCOUNT"}) {
     const char* value = std::getenv(name);
     environment[name] = value ? value : "";
   }

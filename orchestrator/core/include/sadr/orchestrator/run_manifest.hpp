@@ -23,8 +23,9 @@ struct RunManifest {
   std::string sadr_version;       ///< defaults to sadr::kVersion
   unsigned protocol_version = 0;  ///< defaults to sadr::kProtocolVersion
   std::string mode;               ///< "processes", "embedded", "remote"
-  /// Run-time environment that changes speed, not results: OMP_NUM_THREADS and
-  /// OMP_WAIT_POLICY as this process saw them ("" = unset); filled by RunManifest().
+  /// Run-time environment that changes speed, not results: OMP_NUM_THREADS,
+  /// OMP_WAIT_POLICY, GOMP_SPINCOUNT as this process saw them ("" = unset); filled by
+  /// RunManifest().
   std::map<std::string, std::string> environment;
   std::string started_utc;  ///< ISO 8601, e.g. "2026-11-22T03:00:00Z"
   std::string finished_utc;
