@@ -79,6 +79,8 @@ RunResult run_realization(const Scene& scene, const Plan& plan, const CliOptions
     ro.output_dir = out;
     ro.realization = realization;
     ro.mode = std::string(to_string(o.mode));
+    // Services launched here share this host: geometry through shared memory.
+    ro.shared_geometry = o.mode != ServiceMode::kRemote && o.shared_geometry;
     ro.timeout = std::chrono::milliseconds(static_cast<long>(o.timeout_s * 1000));
     ro.interrupt = &g_interrupt;
     ro.liveness = [&services] { services.check_alive(); };

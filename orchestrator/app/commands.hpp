@@ -28,6 +28,9 @@ struct CliOptions {
   bool force = false;      ///< overwrite a non-empty output directory
   ServiceMode mode = ServiceMode::kProcesses;
   ServiceEndpoints remote;  ///< --fluid / --ssa
+  /// Geometry fluid -> ssa through shared memory when the services run here
+  /// (off: --no-shared-memory).
+  bool shared_geometry = true;
   int realizations = 1;
   int jobs = 0;            ///< parallel realizations (0 = number of cores)
   int restarts = 0;        ///< --restart-on-failure N

@@ -41,6 +41,9 @@ int main(int argc, char** argv) {
                     "endpoint of a running fluid_service (e.g. tcp://host:5555); with --ssa, "
                     "nothing is launched");
     cmd->add_option("--ssa", o.remote.ssa, "endpoint of a running ssa_service");
+    cmd->add_flag("!--no-shared-memory", o.shared_geometry,
+                  "send the per-step particle geometry inline in the messages instead of "
+                  "through a shared-memory segment (the default for services launched here)");
     cmd->add_option("--timeout", o.timeout_s, "seconds to wait for a service reply")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();

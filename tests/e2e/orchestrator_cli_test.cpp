@@ -89,6 +89,63 @@ TEST(OrchestratorCli, ProcessesEmbeddedAndRemoteGiveIdenticalFrames) {
   if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
 }
 
+/// 2D periodic SDPD box with thermal noise (particles move every step) and one
+/// stochastic tracer: the geometry goes to ssa_service every coupling step.
+std::string moving_scene() {
+  return "name: moving\n"
+         "dimension: 2\n"
+         "box: {lower: [0.0, 0.0], upper: [12.0, 12.0], periodic: [true, true]}\n"
+         "particles: {spacing: 1.0, density: 1.0}\n"
+         "fluid: {backend: sdpd, h_over_dx: 3.0, sound_speed: 10.0, shear_viscosity: 1.0, "
+         "temperature: 0.01}\n"
+         "species:\n"
+         "  - {name: A, diffusivity: 2.0, initial: [{region: all, count: 3}]}\n"
+         "time: {coupling_step: 0.05, end: 0.5}\n"
+         "output: {times: [0.25, 0.5], formats: [csv]}\n"
+         "seed: 7\n";
+}
+
+TEST(OrchestratorCli, SharedMemoryAndInlineGeometryGiveIdenticalFrames) {
+  // Services launched here get the per-step geometry through a shared-memory
+  // segment (sadr/wire/shared_geometry.hpp); --no-shared-memory and remote (tcp)
+  // services get it inline. Same frames, and no segment is left in /dev/shm.
+  const fs::path d = scratch("shm");
+  const fs::path scene = write_scene(d, moving_scene());
+  const std::string sadr = bin("sadr") + " run " + scene.string() + " -q ";
+  ASSERT_EQ(run(sadr + "-o " + (d / "shm").string(), d / "shm.log"), 0) << read_file(d / "shm.log");
+  ASSERT_EQ(run(sadr + "--embedded -o " + (d / "emb").string(), d / "emb.log"), 0)
+      << read_file(d / "emb.log");
+  ASSERT_EQ(run(sadr + "--no-shared-memory -o " + (d / "inline").string(), d / "inline.log"), 0)
+      << read_file(d / "inline.log");
+  ServiceProcess ssa(bin("ssa_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "ssa_service");
+  ServiceProcess fluid(bin("fluid_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "fluid_service");
+  ASSERT_EQ(run(sadr + "--ssa " + ssa.endpoint() + " --fluid " + fluid.endpoint() + " -o " +
+                    (d / "tcp").string(),
+                d / "tcp.log"),
+            0)
+      << read_file(d / "tcp.log");
+  for (const char* mode : {"shm", "emb"}) {
+    const std::string log = read_file(d / (std::string(mode) + ".log"));
+    const auto at = log.find("through shared memory /sadr-geometry-");
+    ASSERT_NE(at, std::string::npos) << mode << ": " << log;
+    const std::string name = log.substr(at + 22, log.find('\n', at) - at - 22);
+    EXPECT_FALSE(fs::exists("/dev/shm" + name)) << name << " left behind";
+  }
+  for (const char* mode : {"inline", "tcp"}) {
+    EXPECT_EQ(read_file(d / (std::string(mode) + ".log")).find("through shared memory"),
+              std::string::npos)
+        << mode;
+  }
+  expect_same_frames(d / "shm", d / "inline");
+  expect_same_frames(d / "shm", d / "emb");
+  expect_same_frames(d / "shm", d / "tcp");
+  // The particles moved and the tracer is there (the comparison is not vacuous).
+  const std::string last = read_file(d / "shm" / "frames" / "frame_000002.csv");
+  EXPECT_EQ(last.rfind("time,id,kind,x,y,z,vx,vy,vz,density,mass,A\n", 0), 0u) << last;
+  EXPECT_EQ(last.find(",0.5,0.5,0,"), std::string::npos) << "particle 0 did not move";
+  if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
+}
+
 TEST(OrchestratorCli, OpenMpWaitsAreBoundedUnlessTheUserChose) {
   // sadr re-executes itself with OMP_WAIT_POLICY=passive and GOMP_SPINCOUNT=10000
   // when neither is set (common/openmp_env.hpp); the run manifest records what the

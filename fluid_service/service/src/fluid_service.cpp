@@ -122,6 +122,14 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
   auto add_state = [&] {
     if (!req.return_state()) return;
     b.read_state(scratch_);
+    if (!req.geometry_shm().empty()) {  // same host: through shared memory
+      if (geometry_shm_.name() != req.geometry_shm()) {
+        geometry_shm_ = wire::SharedGeometry::open(req.geometry_shm(), "advance.geometry_shm");
+      }
+      rep.clear_particles();
+      rep.set_geometry_generation(geometry_shm_.write(scratch_, b.time()));
+      return;
+    }
     wire::geometry_to_proto(scratch_, *rep.mutable_particles());
     rep.mutable_particles()->set_time(b.time());
   };

@@ -16,6 +16,7 @@
 #include "sadr/orchestrator/service_clients.hpp"
 #include "sadr/orchestrator/splitting.hpp"
 #include "sadr/wire/convert.hpp"
+#include "sadr/wire/shared_geometry.hpp"
 
 namespace sadr::orchestrator {
 namespace {
@@ -61,6 +62,15 @@ class CoupledRun {
       if (options.liveness) ssa_->set_liveness_check(options.liveness);
     }
     particles_ = scene_.particles;
+    if (options.shared_geometry && fluid_ && ssa_ && plan_.particles_to_ssa_each_step) {
+      try {
+        shm_ = wire::SharedGeometry::create(scene_.particles.size());
+        log::info("geometry to ssa_service through shared memory ", shm_->name());
+      } catch (const Error& e) {
+        log::warn("no shared-memory segment for the geometry (", e.what(),
+                  "); sending it inline in the messages instead");
+      }
+    }
     manifest_.scene_path = scene_.source_path.string();
     manifest_.scene_hash = scene_.source_hash;
     manifest_.scene_seed = scene_.seed;
@@ -180,6 +190,7 @@ class CoupledRun {
     // Positions, densities and masses for the SSA, returned by the fluid call
     // just before an SSA stage (one round trip instead of Advance + GetState).
     std::optional<common::v1::ParticleState> geometry;
+    std::uint64_t shm_generation = 0;  // > 0: the geometry is in shm_ instead
     for (std::size_t k = 0; k < stages.size(); ++k) {
       const Stage& stage = stages[k];
       if (stage.op == Operator::kFluid) {
@@ -191,9 +202,11 @@ class CoupledRun {
         req.set_time_step(stage.length());
         req.set_return_state(ssa_ && plan_.particles_to_ssa_each_step && k + 1 < stages.size() &&
                              stages[k + 1].op != Operator::kFluid);
+        if (req.return_state() && shm_) req.set_geometry_shm(shm_->name());
         auto rep = fluid_->advance(req);
         manifest_.timings_s["fluid_compute"] += rep.compute_seconds();
         moved = rep.particles_moved() || moved;
+        shm_generation = rep.geometry_generation();
         if (rep.has_particles()) {
           geometry = std::move(*rep.mutable_particles());
         } else {
@@ -206,7 +219,10 @@ class CoupledRun {
         req.set_t_end(stage.end);
         if (moved && plan_.particles_to_ssa_each_step) {
           ScopedTimer timer(manifest_.timings_s, "transfer");
-          if (geometry) {
+          if (shm_generation > 0) {
+            req.set_geometry_shm(shm_->name());
+            req.set_geometry_generation(shm_generation);
+          } else if (geometry) {
             *req.mutable_particles() = std::move(*geometry);
           } else {
             fluid::v1::GetStateRequest gs;
@@ -218,6 +234,10 @@ class CoupledRun {
         geometry.reset();
         ScopedTimer timer(manifest_.timings_s, "ssa");
         const auto rep = ssa_->advance(req);
+        // Both services have mapped the segment now: drop its name, so that
+        // nothing is left in /dev/shm whatever happens next (idempotent).
+        if (shm_generation > 0) shm_->unlink();
+        shm_generation = 0;
         manifest_.timings_s["ssa_graph"] += rep.graph_seconds();
         manifest_.timings_s["ssa_nsm"] += rep.nsm_seconds();
       }
@@ -371,6 +391,8 @@ class CoupledRun {
   std::uint64_t seed_;
   std::optional<FluidClient> fluid_;
   std::optional<SsaClient> ssa_;
+  /// Per-step geometry fluid -> ssa on this host (RunOptions::shared_geometry).
+  std::optional<wire::SharedGeometry> shm_;
   ParticleState particles_;
   double t_ = 0.0;
   std::uint64_t step_ = 0;

@@ -102,11 +102,18 @@ void SsaServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply&
   bool rebuilt = false;
   // Converted before timing: conversion is transfer cost. Kinds and ids may be
   // absent (the fluid's per-step geometry): they are those of the current graph.
-  if (req.has_particles()) {
+  const bool from_shm = !req.geometry_shm().empty();
+  if (from_shm) {  // same host: the fluid wrote the geometry into shared memory
+    if (geometry_shm_.name() != req.geometry_shm()) {
+      geometry_shm_ = wire::SharedGeometry::open(req.geometry_shm(), "advance.geometry_shm");
+    }
+    geometry_shm_.read(req.geometry_generation(), s.state().graph_inputs(), moved_,
+                       "advance.geometry_shm");
+  } else if (req.has_particles()) {
     wire::state_from_proto(req.particles(), s.state().graph_inputs(), moved_, "advance.particles");
   }
   const auto t0 = std::chrono::steady_clock::now();
-  if (req.has_particles()) rebuilt = s.update_graph(moved_);
+  if (from_shm || req.has_particles()) rebuilt = s.update_graph(moved_);
   apply_inflows(s, inflows_);
   const auto t1 = std::chrono::steady_clock::now();
   if (!(req.t_end() >= s.time())) {

@@ -16,6 +16,7 @@
 #include "sadr/fluid/fluid_model.hpp"
 #include "sadr/fluid/v1/fluid_service.pb.h"
 #include "sadr/wire/convert.hpp"
+#include "sadr/wire/shared_geometry.hpp"
 #include "sadr/wire/typed_handler.hpp"
 
 namespace sadr::fluid {
@@ -53,7 +54,8 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
   std::uint64_t last_step_ = 0;
   bool have_last_ = false;
   v1::AdvanceReply last_reply_;
-  ParticleState scratch_;  ///< state read for Advance(return_state); buffers reused
+  ParticleState scratch_;              ///< state read for Advance(return_state); buffers reused
+  wire::SharedGeometry geometry_shm_;  ///< the segment Advance.geometry_shm names (mapped once)
   struct Inflow {
     int species = 0;  ///< deterministic species index
     wire::InflowBox box;

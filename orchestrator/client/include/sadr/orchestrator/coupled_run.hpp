@@ -33,6 +33,10 @@ struct RunOptions {
   std::filesystem::path output_dir;  ///< frames, run.json, checkpoint/
   std::uint64_t realization = 0;
   std::string mode = "processes";  ///< for the manifest: processes | embedded | remote
+  /// The services run on this host (launched here): hand the per-step geometry
+  /// from fluid_service to ssa_service through a shared-memory segment
+  /// (sadr/wire/shared_geometry.hpp) instead of inline in the messages.
+  bool shared_geometry = false;
   std::chrono::milliseconds timeout{std::chrono::seconds(120)};  ///< per service call
   bool progress = true;                          ///< progress bar (terminal) or periodic lines
   std::string progress_label;                    ///< prefix of progress lines ("" = none)

@@ -18,6 +18,7 @@
 #include "sadr/ssa/inflow.hpp"
 #include "sadr/ssa/model.hpp"
 #include "sadr/ssa/v1/ssa_service.pb.h"
+#include "sadr/wire/shared_geometry.hpp"
 #include "sadr/wire/typed_handler.hpp"
 
 namespace sadr::ssa {
@@ -50,6 +51,7 @@ class SsaServiceHandler : public wire::TypedHandler<v1::SsaRequest, v1::SsaReply
   std::vector<std::string> species_names_;
   std::vector<InflowBuffer> inflows_;  ///< re-imposed at Init and every Advance
   ParticleState moved_;                ///< the last Advance's particles (buffers reused)
+  wire::SharedGeometry geometry_shm_;  ///< the segment Advance.geometry_shm names (mapped once)
   std::uint64_t seed_ = 0;
   // Idempotent advance: the last (run_id, step_index) and its reply.
   std::string last_run_id_;

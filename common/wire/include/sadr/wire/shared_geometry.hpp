@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: MIT
+/// \file shared_geometry.hpp
+/// The per-step particle geometry (positions, densities, masses) in a POSIX
+/// shared-memory segment, for services on the same host.
+///
+/// Why: every coupling step fluid_service hands ~40 bytes per particle to
+/// ssa_service. Inline in the protocol that is serialised, copied through two
+/// sockets and parsed twice (fluid -> orchestrator -> ssa): ~9 user-space and 4
+/// kernel copies, 0.5 ms (embedded) to 2 ms (processes) per step at 1e4
+/// particles (bench/results/README-coupled.md). When the orchestrator launched
+/// the services itself (processes or --embedded), it creates one segment per
+/// run and names it in the Advance requests; fluid_service writes the geometry
+/// into it after the step, ssa_service reads it from there, and only the name
+/// and a generation number travel in the messages. Remote services (tcp, other
+/// hosts) keep the inline path.
+///
+/// Layout: a 64-byte header (magic, version, dimension, capacity N, generation,
+/// time), then 3N positions, N densities, N masses (doubles, native byte order:
+/// same host). The segment is created 0600 with O_EXCL; the orchestrator
+/// unlinks the name once both services have mapped it (the mappings stay
+/// valid), so a crash later leaves nothing behind in /dev/shm.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "sadr/common/particle_state.hpp"
+
+namespace sadr::wire {
+
+class SharedGeometry {
+ public:
+  /// A new segment for `capacity` particles (name: "/sadr-geometry-<pid>-<k>").
+  /// The memory is reserved at once (posix_fallocate). Throws sadr::Error
+  /// (kInternal) naming the system error, e.g. a full or too small /dev/shm; the
+  /// orchestrator then sends the geometry inline.
+  static SharedGeometry create(std::size_t capacity);
+  /// Maps an existing segment read-write; checks the header and the size and
+  /// throws InvalidArgument naming `where`, the segment and what is wrong.
+  static SharedGeometry open(const std::string& name, std::string_view where);
+
+  SharedGeometry() = default;
+  SharedGeometry(SharedGeometry&& other) noexcept;
+  SharedGeometry& operator=(SharedGeometry&& other) noexcept;
+  SharedGeometry(const SharedGeometry&) = delete;
+  SharedGeometry& operator=(const SharedGeometry&) = delete;
+  ~SharedGeometry();
+
+  [[nodiscard]] bool valid() const { return base_ != nullptr; }
+  [[nodiscard]] const std::string& name() const { return name_; }
+  [[nodiscard]] std::size_t capacity() const;
+  /// Removes the name (mappings, including this one, stay valid). Idempotent.
+  void unlink();
+
+  /// Writes p's dimension, positions, densities and masses and `time`, bumps the
+  /// generation and returns it. Throws InvalidArgument if p has more particles
+  /// than the segment holds.
+  std::uint64_t write(const ParticleState& p, double time);
+  /// Reads what write() stored into out (dimension, positions, densities, masses;
+  /// kinds and ids from `previous`, velocities empty) and validates it. Throws
+  /// InvalidArgument naming `where` if the generation is not `generation` (a
+  /// stale or foreign segment), or the count differs from previous.size().
+  void read(std::uint64_t generation, const ParticleState& previous, ParticleState& out,
+            std::string_view where) const;
+
+ private:
+  struct Header;
+  Header* header() const;
+  const double* data() const;
+  double* data();
+
+  std::string name_;
+  void* base_ = nullptr;
+  std::size_t bytes_ = 0;
+  bool owner_ = false;  ///< created here: unlink() on destruction if not done yet
+};
+
+}  // namespace sadr::wire

@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/wire/shared_geometry.hpp"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+#include "sadr/common/status.hpp"
+
+namespace sadr::wire {
+
+struct SharedGeometry::Header {
+  char magic[8];              ///< "SADRGEO"
+  std::uint32_t version;      ///< kVersion
+  std::uint32_t dimension;    ///< of the last write
+  std::uint64_t capacity;     ///< particles the segment holds
+  std::uint64_t count;        ///< particles of the last write
+  std::uint64_t generation;   ///< 0 = never written
+  double time;                ///< simulated time of the last write
+  std::uint64_t reserved[2];  ///< pads the header to 64 bytes
+};
+
+namespace {
+
+constexpr char kMagic[8] = {'S', 'A', 'D', 'R', 'G', 'E', 'O', '\0'};
+constexpr std::uint32_t kVersion = 1;
+constexpr std::size_t kHeaderBytes = 64;
+
+std::size_t bytes_for(std::size_t capacity) {
+  return kHeaderBytes + 5 * capacity * sizeof(double);  // 3N positions, N densities, N masses
+}
+
+std::string system_error(const std::string& what, const std::string& name) {
+  return what + " '" + name + "': " + std::strerror(errno);
+}
+
+}  // namespace
+
+SharedGeometry SharedGeometry::create(std::size_t capacity) {
+  static_assert(sizeof(Header) == kHeaderBytes);
+  static std::atomic<unsigned> counter{0};
+  SharedGeometry g;
+  g.name_ = "/sadr-geometry-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const int fd = ::shm_open(g.name_.c_str(), O_RDWR | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) throw Error(StatusCode::kInternal, system_error("shm_open", g.name_));
+  g.owner_ = true;  // from here on the destructor unlinks the name
+  g.bytes_ = bytes_for(capacity);
+  // Reserve the memory now: a size-limited /dev/shm (e.g. 64 MiB in a container)
+  // then fails here, cleanly, instead of with SIGBUS at the first write.
+  if (const int err = ::posix_fallocate(fd, 0, static_cast<off_t>(g.bytes_)); err != 0) {
+    ::close(fd);
+    errno = err;
+    throw Error(StatusCode::kInternal, system_error("cannot reserve " + std::to_string(g.bytes_) +
+                                                        " bytes for shared-memory segment",
+                                                    g.name_));
+  }
+  void* p = ::mmap(nullptr, g.bytes_, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+  ::close(fd);
+  if (p == MAP_FAILED) throw Error(StatusCode::kInternal, system_error("mmap", g.name_));
+  g.base_ = p;
+  Header* h = g.header();
+  std::memset(h, 0, kHeaderBytes);
+  std::memcpy(h->magic, kMagic, sizeof kMagic);
+  h->version = kVersion;
+  h->capacity = capacity;
+  return g;
+}
+
+SharedGeometry SharedGeometry::open(const std::string& name, std::string_view where) {
+  auto fail = [&](const std::string& why) {
+    return InvalidArgument(std::string(where) + " = '" + name + "': " + why,
+                           {{"field", std::string(where)}, {"value", name}});
+  };
+  // A POSIX shm name: one leading '/', no other '/', and ours start with /sadr-.
+  if (name.rfind("/sadr-", 0) != 0 || name.find('/', 1) != std::string::npos || name.size() > 200) {
+    throw fail("not a sadr shared-memory segment name (allowed: /sadr-...)");
+  }
+  const int fd = ::shm_open(name.c_str(), O_RDWR, 0);
+  if (fd < 0) {
+    throw fail(std::string("cannot open the shared-memory segment (") + std::strerror(errno) +
+               "; the geometry segment only works for services on the orchestrator's host)");
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || static_cast<std::size_t>(st.st_size) < kHeaderBytes) {
+    ::close(fd);
+    throw fail("segment too small for its header");
+  }
+  SharedGeometry g;
+  g.name_ = name;
+  g.bytes_ = static_cast<std::size_t>(st.st_size);
+  void* p = ::mmap(nullptr, g.bytes_, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+  ::close(fd);
+  if (p == MAP_FAILED) throw fail(std::string("mmap failed: ") + std::strerror(errno));
+  g.base_ = p;
+  const Header* h = g.header();
+  if (std::memcmp(h->magic, kMagic, sizeof kMagic) != 0 || h->version != kVersion) {
+    throw fail("not a sadr geometry segment of version " + std::to_string(kVersion));
+  }
+  if (h->capacity > (g.bytes_ - kHeaderBytes) / (5 * sizeof(double))) {
+    throw fail("header capacity " + std::to_string(h->capacity) + " exceeds the segment size " +
+               std::to_string(g.bytes_));
+  }
+  return g;
+}
+
+SharedGeometry::SharedGeometry(SharedGeometry&& o) noexcept
+    : name_(std::move(o.name_)),
+      base_(std::exchange(o.base_, nullptr)),
+      bytes_(std::exchange(o.bytes_, 0)),
+      owner_(std::exchange(o.owner_, false)) {}
+
+SharedGeometry& SharedGeometry::operator=(SharedGeometry&& o) noexcept {
+  if (this != &o) {
+    this->~SharedGeometry();
+    new (this) SharedGeometry(std::move(o));
+  }
+  return *this;
+}
+
+SharedGeometry::~SharedGeometry() {
+  if (owner_) unlink();
+  if (base_ != nullptr) ::munmap(base_, bytes_);
+  base_ = nullptr;
+}
+
+void SharedGeometry::unlink() {
+  if (!owner_) return;
+  ::shm_unlink(name_.c_str());  // ENOENT (already gone) is fine
+  owner_ = false;
+}
+
+std::size_t SharedGeometry::capacity() const {
+  return valid() ? static_cast<std::size_t>(header()->capacity) : 0;
+}
+
+SharedGeometry::Header* SharedGeometry::header() const {
+  return static_cast<Header*>(base_);
+}
+const double* SharedGeometry::data() const {
+  return reinterpret_cast<const double*>(static_cast<const char*>(base_) + kHeaderBytes);
+}
+double* SharedGeometry::data() {
+  return reinterpret_cast<double*>(static_cast<char*>(base_) + kHeaderBytes);
+}
+
+std::uint64_t SharedGeometry::write(const ParticleState& p, double time) {
+  Header* h = header();
+  const std::size_t n = p.size(), cap = static_cast<std::size_t>(h->capacity);
+  if (n > cap || p.positions.size() != 3 * n || p.densities.size() != n || p.masses.size() != n) {
+    throw InvalidArgument("shared geometry '" + name_ + "': " + std::to_string(n) +
+                          " particles do not fit its capacity " + std::to_string(cap));
+  }
+  double* d = data();
+  std::memcpy(d, p.positions.data(), 3 * n * sizeof(double));
+  std::memcpy(d + 3 * cap, p.densities.data(), n * sizeof(double));
+  std::memcpy(d + 4 * cap, p.masses.data(), n * sizeof(double));
+  h->dimension = static_cast<std::uint32_t>(p.dimension);
+  h->count = n;
+  h->time = time;
+  return ++h->generation;
+}
+
+void SharedGeometry::read(std::uint64_t generation, const ParticleState& previous,
+                          ParticleState& out, std::string_view where) const {
+  const Header* h = header();
+  const std::size_t n = static_cast<std::size_t>(h->count);
+  const std::size_t cap = static_cast<std::size_t>(h->capacity);
+  if (h->generation != generation) {
+    throw InvalidArgument(std::string(where) + ": shared geometry '" + name_ +
+                              "' holds generation " + std::to_string(h->generation) +
+                              ", the request names " + std::to_string(generation) +
+                              " (stale or foreign segment)",
+                          {{"field", std::string(where)}, {"value", std::to_string(generation)}});
+  }
+  if (n != previous.size() || n > cap) {
+    throw InvalidArgument(std::string(where) + ": shared geometry '" + name_ + "' holds " +
+                          std::to_string(n) + " particles, expected " +
+                          std::to_string(previous.size()) +
+                          " (the particle set cannot change after Init)");
+  }
+  const double* d = data();
+  out.dimension = static_cast<int>(h->dimension);
+  out.positions.assign(d, d + 3 * n);
+  out.densities.assign(d + 3 * cap, d + 3 * cap + n);
+  out.masses.assign(d + 4 * cap, d + 4 * cap + n);
+  out.velocities.clear();
+  out.kinds = previous.kinds;
+  out.ids = previous.ids;
+  try {
+    out.validate();
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(std::string(where) + ": " + e.what());
+  }
+}
+
+}  // namespace sadr::wire
