@@ -63,6 +63,16 @@ std::string annihilation_scene(double end, const std::string& outputs, double ch
   return s.str();
 }
 
+/// Runs `sadr_run` (ending in options) against fluid_service and ssa_service
+/// started here on tcp loopback (remote mode), output in `out`, log in out.log.
+int run_with_tcp_services(const std::string& sadr_run, const fs::path& out) {
+  ServiceProcess ssa(bin("ssa_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "ssa_service");
+  ServiceProcess fluid(bin("fluid_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "fluid_service");
+  return run(
+      sadr_run + "--ssa " + ssa.endpoint() + " --fluid " + fluid.endpoint() + " -o " + out.string(),
+      fs::path(out.string() + ".log"));
+}
+
 TEST(OrchestratorCli, ProcessesEmbeddedAndRemoteGiveIdenticalFrames) {
   const fs::path d = scratch("modes");
   const fs::path scene = write_scene(d, annihilation_scene(0.3, "[0.1, 0.2, 0.3]", 0));
@@ -71,13 +81,7 @@ TEST(OrchestratorCli, ProcessesEmbeddedAndRemoteGiveIdenticalFrames) {
       << read_file(d / "proc.log");
   ASSERT_EQ(run(sadr + "--embedded -o " + (d / "emb").string(), d / "emb.log"), 0)
       << read_file(d / "emb.log");
-  ServiceProcess ssa(bin("ssa_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "ssa_service");
-  ServiceProcess fluid(bin("fluid_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "fluid_service");
-  ASSERT_EQ(run(sadr + "--ssa " + ssa.endpoint() + " --fluid " + fluid.endpoint() + " -o " +
-                    (d / "tcp").string(),
-                d / "tcp.log"),
-            0)
-      << read_file(d / "tcp.log");
+  ASSERT_EQ(run_with_tcp_services(sadr, d / "tcp"), 0) << read_file(d / "tcp.log");
   expect_same_frames(d / "proc", d / "emb");
   expect_same_frames(d / "proc", d / "tcp");
   // The frames hold molecules (the run did something).
@@ -117,13 +121,7 @@ TEST(OrchestratorCli, SharedMemoryAndInlineGeometryGiveIdenticalFrames) {
       << read_file(d / "emb.log");
   ASSERT_EQ(run(sadr + "--no-shared-memory -o " + (d / "inline").string(), d / "inline.log"), 0)
       << read_file(d / "inline.log");
-  ServiceProcess ssa(bin("ssa_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "ssa_service");
-  ServiceProcess fluid(bin("fluid_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "fluid_service");
-  ASSERT_EQ(run(sadr + "--ssa " + ssa.endpoint() + " --fluid " + fluid.endpoint() + " -o " +
-                    (d / "tcp").string(),
-                d / "tcp.log"),
-            0)
-      << read_file(d / "tcp.log");
+  ASSERT_EQ(run_with_tcp_services(sadr, d / "tcp"), 0) << read_file(d / "tcp.log");
   for (const char* mode : {"shm", "emb"}) {
     const std::string log = read_file(d / (std::string(mode) + ".log"));
     const auto at = log.find("through shared memory /sadr-geometry-");

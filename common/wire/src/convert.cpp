@@ -167,6 +167,10 @@ void state_from_proto(const common::v1::ParticleState& in, const ParticleState& 
   out.densities.assign(in.densities().begin(), in.densities().end());
   out.masses.assign(in.masses().begin(), in.masses().end());
   out.velocities.assign(in.velocities().begin(), in.velocities().end());
+  finish_geometry(previous, out, where);
+}
+
+void finish_geometry(const ParticleState& previous, ParticleState& out, std::string_view where) {
   out.kinds = previous.kinds;
   out.ids = previous.ids;
   try {

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "sadr/common/status.hpp"
+#include "sadr/wire/convert.hpp"
 
 namespace sadr::wire {
 
@@ -190,13 +191,7 @@ void SharedGeometry::read(std::uint64_t generation, const ParticleState& previou
   out.densities.assign(d + 3 * cap, d + 3 * cap + n);
   out.masses.assign(d + 4 * cap, d + 4 * cap + n);
   out.velocities.clear();
-  out.kinds = previous.kinds;
-  out.ids = previous.ids;
-  try {
-    out.validate();
-  } catch (const InvalidArgument& e) {
-    throw InvalidArgument(std::string(where) + ": " + e.what());
-  }
+  finish_geometry(previous, out, where);
 }
 
 }  // namespace sadr::wire

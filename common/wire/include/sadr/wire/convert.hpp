@@ -59,6 +59,9 @@ void geometry_to_proto(const ParticleState& in, common::v1::ParticleState& out);
 /// kinds or ids is read as by from_proto. Validates like from_proto.
 void state_from_proto(const common::v1::ParticleState& in, const ParticleState& previous,
                       ParticleState& out, std::string_view where);
+/// The tail of every geometry update: kinds and ids from `previous` (they never
+/// change after Init), then validation, errors prefixed with `where`.
+void finish_geometry(const ParticleState& previous, ParticleState& out, std::string_view where);
 
 /// Region name -> particle indices.
 using RegionMap = std::map<std::string, std::vector<std::uint32_t>, std::less<>>;
