@@ -7,12 +7,14 @@ rebuild and NSM, for 1e4 and 1e5 particles, embedded vs child processes.
 Scene: 2D periodic box of SDPD fluid at rest with thermal noise (particles
 move every step, so the SSA graph is rebuilt every step), h = 3 dx, one
 stochastic tracer with one molecule per voxel and kappa chosen for about one
-jump per molecule per coupling step; tau = one fluid sub-step.
+jump per molecule per coupling step; tau = 0.05, which the SDPD acoustic limit
+0.25 (h/2) / c0 = 0.0375 splits into two fluid sub-steps.
 
 Timings come from run.json: `fluid_compute` (backend advance inside the
 service), `ssa_graph` and `ssa_nsm` (inside ssa_service); transfer = the rest
 of the fluid and SSA call times plus the state read (`transfer`).
 Usage: coupled_step.py [--sadr build/release/bin/sadr] [--sizes 10000 100000] [--steps 20]
+                       [--modes embedded processes] [--extra="--no-shared-memory"]
 Writes bench/results/coupled_step.json and .md.
 """
 import argparse, json, math, os, subprocess, sys, tempfile
@@ -43,13 +45,16 @@ def main():
     ap.add_argument("--sizes", type=int, nargs="+", default=[10000, 100000])
     ap.add_argument("--steps", type=int, default=20)
     ap.add_argument("--out", default=os.path.join(root, "bench/results"))
+    ap.add_argument("--modes", nargs="+", default=["embedded", "processes"],
+                    choices=["embedded", "processes"])
+    ap.add_argument("--extra", default="", help="more sadr run options, e.g. --no-shared-memory")
     a = ap.parse_args()
-    tau = 0.05  # below the acoustic limit 0.25 h / c0 = 0.075: one sub-step per coupling step
+    tau = 0.05  # two SDPD sub-steps: acoustic limit 0.25 (h/2) / c0 = 0.0375
     kappa = 1.0 / (4 * tau)  # 2D: per-molecule jump rate ~ 4 kappa / dx^2 -> ~1 jump per step
     rows = []
     for n in a.sizes:
         L = int(round(math.sqrt(n)))
-        for mode in ["embedded", "processes"]:
+        for mode in a.modes:
             work = tempfile.mkdtemp(prefix="sadr-coupled-")
             scene = os.path.join(work, "scene.yaml")
             with open(scene, "w") as f:
@@ -57,6 +62,7 @@ def main():
             cmd = [a.sadr, "run", scene, "-q", "-o", os.path.join(work, "out")]
             if mode == "embedded":
                 cmd.append("--embedded")
+            cmd += a.extra.split()
             subprocess.run(cmd, check=True)
             with open(os.path.join(work, "out", "run.json")) as f:
                 t = json.load(f)["timings_s"]
