@@ -57,6 +57,61 @@ TEST(EventTree, RandomUpdatesMatchBruteForce) {
   }
 }
 
+// Brute force runner-up: earliest time other than the top, lowest voxel on ties;
+// the top itself when every other time is +inf.
+std::uint32_t brute_runner_up(const std::vector<double>& t) {
+  const std::uint32_t top = brute_top(t);
+  std::uint32_t best = top;
+  for (std::uint32_t v = 0; v < t.size(); ++v) {
+    if (v == top || t[v] == kInf) continue;
+    if (best == top || t[v] < t[best]) best = v;
+  }
+  return best;
+}
+
+TEST(EventTree, RunnerUpMatchesBruteForceAndKeepsTheTreeExact) {
+  // The event loop's pattern: update_top, runner_up, update(j), ... runner_up()
+  // keeps the top's sibling minima for the next update_top() unless an update()
+  // writes into their lines; every step is checked against brute force.
+  std::mt19937_64 gen(11);
+  std::uniform_real_distribution<double> u(0.0, 100.0);
+  for (std::size_t n : {1u, 2u, 7u, 8u, 9u, 64u, 65u, 513u, 4100u}) {
+    std::vector<double> t(n);
+    for (auto& x : t) x = u(gen);
+    EventTree q;
+    q.assign(t);
+    for (int step = 0; step < 4000; ++step) {
+      const int kind = static_cast<int>(gen() % 4);
+      double nt = std::floor(u(gen) * 2) / 2;  // frequent exact ties
+      if (step % 13 == 0) nt = kInf;
+      if (kind == 0) {
+        t[q.top_voxel()] = nt;
+        if (step % 2 == 0) {
+          q.update_top(nt);
+        } else {
+          q.update_top_portable(nt);
+        }
+      } else if (kind == 1) {
+        // A neighbour of the top (same or nearby line), or anywhere.
+        const auto v = static_cast<std::uint32_t>(step % 2 == 0 ? (q.top_voxel() + gen() % 17) % n
+                                                                : gen() % n);
+        t[v] = nt;
+        q.update(v, nt);
+      } else {
+        const std::uint32_t r = step % 2 == 0 ? q.runner_up() : q.runner_up_portable();
+        ASSERT_EQ(r, brute_runner_up(t)) << "n = " << n << " step " << step;
+      }
+      const std::uint32_t expect = brute_top(t);
+      ASSERT_EQ(q.top_voxel(), expect) << "n = " << n << " step " << step;
+      ASSERT_EQ(q.top_time(), t[expect]) << "n = " << n << " step " << step;
+      if (step % 97 == 0) {
+        ASSERT_TRUE(q.valid()) << "n = " << n << " step " << step;
+      }
+    }
+    ASSERT_TRUE(q.valid());
+  }
+}
+
 TEST(EventTree, StateIsAFunctionOfTheTimes) {
   // Snapshots store only the times: a tree rebuilt from them must equal the
   // updated one, including which voxel wins a tie.

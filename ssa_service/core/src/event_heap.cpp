@@ -70,6 +70,7 @@ std::size_t padded(std::size_t count) {
 void EventTree::assign(std::span<const double> times) {
   n_ = times.size();
   depth_ = 0;
+  sib_valid_ = false;
   min_.clear();
   arg_.clear();
   if (n_ == 0) return;
@@ -103,20 +104,12 @@ void EventTree::update_top_with(double time) {
   // path. Loads also precede the stores into the same lines: a wide load of a line
   // with a pending narrow store to it would wait for the store (no forwarding).
   const std::uint32_t top = top_voxel();
-  double sib_min[kMaxDepth + 1];
-  unsigned sib_lane[kMaxDepth + 1];
-  std::uint32_t sib_arg[kMaxDepth + 1];
+  if (!sib_valid_ || sib_top_ != top) sibling_minima<Argmin>(top);
+  sib_valid_ = false;  // the path's lines change below
+  const double* sib_min = sib_min_;
+  const unsigned* sib_lane = sib_lane_;
+  const std::uint32_t* sib_arg = sib_arg_;
   std::size_t child = top;
-  for (std::size_t L = 1; L <= depth_; ++L) {
-    const double* line = min_.data() + min_off_[L - 1] + (child & ~(kFan - 1));
-    const unsigned k = Argmin(line, child & (kFan - 1), kInf, &sib_min[L]);
-    child >>= kShift;
-    sib_lane[L] = k;
-    // (k may be the child's own lane when every sibling is +inf: never chosen below.)
-    sib_arg[L] = L == 1 ? static_cast<std::uint32_t>((child << kShift) + k)
-                        : arg_[arg_off_[L - 1] + (child << kShift) + k];
-  }
-  child = top;
   double value = time;
   std::uint32_t arg = top;
   for (std::size_t L = 1; L <= depth_; ++L) {
@@ -130,6 +123,40 @@ void EventTree::update_top_with(double time) {
     arg_[arg_off_[L] + child] = arg;
   }
   min_[min_off_[depth_]] = value;
+}
+
+template <unsigned (*Argmin)(const double*, std::size_t, double, double*)>
+void EventTree::sibling_minima(std::uint32_t top) {
+  std::size_t child = top;
+  for (std::size_t L = 1; L <= depth_; ++L) {
+    const double* line = min_.data() + min_off_[L - 1] + (child & ~(kFan - 1));
+    const unsigned k = Argmin(line, child & (kFan - 1), kInf, &sib_min_[L]);
+    child >>= kShift;
+    sib_lane_[L] = k;
+    // (k may be the child's own lane when every sibling is +inf: never chosen.)
+    sib_arg_[L] = L == 1 ? static_cast<std::uint32_t>((child << kShift) + k)
+                         : arg_[arg_off_[L - 1] + (child << kShift) + k];
+  }
+  sib_top_ = top;
+  sib_valid_ = true;
+}
+
+template <unsigned (*Argmin)(const double*, std::size_t, double, double*)>
+std::uint32_t EventTree::runner_up_with() {
+  // The minimum of the top's sibling minima (its own lane read as +inf on every
+  // level), combined with branch-free selects (a compare-and-branch per level
+  // mispredicted often: measured). Ties: the lower voxel index (all +inf: the top).
+  const std::uint32_t top = top_voxel();
+  if (!sib_valid_ || sib_top_ != top) sibling_minima<Argmin>(top);
+  double best = kInf;
+  std::uint32_t best_arg = top;
+  for (std::size_t L = depth_; L >= 1; --L) {
+    const bool take =
+        sib_min_[L] < best || (sib_min_[L] == best && best < kInf && sib_arg_[L] < best_arg);
+    best = take ? sib_min_[L] : best;
+    best_arg = take ? sib_arg_[L] : best_arg;
+  }
+  return best_arg;
 }
 
 #if SADR_EVENT_TREE_AVX512
@@ -163,6 +190,14 @@ __attribute__((target("avx512f"))) void EventTree::update_top_avx512(double time
   update_top_with<argmin_line_avx512>(time);
 }
 
+__attribute__((target("avx512f"))) std::uint32_t EventTree::runner_up_avx512() {
+  return runner_up_with<argmin_line_avx512>();
+}
+
+std::uint32_t EventTree::runner_up() {
+  return kHasAvx512 ? runner_up_avx512() : runner_up_with<argmin_line_with>();
+}
+
 void EventTree::update_top(double time) {
   if (kHasAvx512) {
     update_top_avx512(time);
@@ -177,10 +212,20 @@ void EventTree::update_top_avx512(double time) {
 void EventTree::update_top(double time) {
   update_top_with<argmin_line_with>(time);
 }
+std::uint32_t EventTree::runner_up_avx512() {
+  return runner_up_with<argmin_line_with>();
+}
+std::uint32_t EventTree::runner_up() {
+  return runner_up_with<argmin_line_with>();
+}
 #endif
 
 void EventTree::update_top_portable(double time) {
   update_top_with<argmin_line_with>(time);
+}
+
+std::uint32_t EventTree::runner_up_portable() {
+  return runner_up_with<argmin_line_with>();
 }
 
 bool EventTree::valid() const {

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "sadr/ssa/huge_pages.hpp"
+#include "sadr/ssa/prefetch.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -56,7 +57,7 @@ class EventTree {
   /// Next event times by voxel (N entries).
   [[nodiscard]] std::span<const double> times() const { return {min_.data(), n_}; }
   /// Hints that `voxel`'s time will be read or written soon.
-  void prefetch(std::uint32_t voxel) const { __builtin_prefetch(min_.data() + voxel); }
+  void prefetch(std::uint32_t voxel) const { detail::prefetch_line(min_.data() + voxel); }
 
   /// Sets the time of `voxel` and restores the tree, O(log_8 N).
   void update(std::uint32_t voxel, double time);
@@ -65,6 +66,17 @@ class EventTree {
   void update_top(double time);
   /// update_top() without AVX-512 (tests compare the two paths).
   void update_top_portable(double time);
+
+  /// The runner-up: the voxel with the earliest time other than top_voxel(), lowest
+  /// index on ties; top_voxel() itself when every other time is +inf or N = 1
+  /// (requires !empty()). It is the next top unless the top's or another voxel's
+  /// time changes first: the event loop prefetches it two events ahead.
+  /// It is the minimum of the sibling minima along the top's path, which the next
+  /// update_top() needs too: they are kept (not a const function) and reused by
+  /// update_top() unless an update() in between wrote into one of their lines.
+  [[nodiscard]] std::uint32_t runner_up();
+  /// runner_up() without AVX-512 (tests).
+  [[nodiscard]] std::uint32_t runner_up_portable();
 
   /// True if every node equals the minimum of its children (tests).
   [[nodiscard]] bool valid() const;
@@ -112,6 +124,14 @@ class EventTree {
   template <unsigned (*Argmin)(const double*, std::size_t, double, double*)>
   [[gnu::always_inline]] inline void update_top_with(double time);
   void update_top_avx512(double time);
+  template <unsigned (*Argmin)(const double*, std::size_t, double, double*)>
+  [[gnu::always_inline]] inline std::uint32_t runner_up_with();
+  std::uint32_t runner_up_avx512();
+  /// Sibling minima along the top's path (levels 1..depth_) into sib_*_.
+  template <unsigned (*Argmin)(const double*, std::size_t, double, double*)>
+  [[gnu::always_inline]] inline void sibling_minima(std::uint32_t top);
+  /// update() without the cache bookkeeping; returns the highest level it wrote.
+  std::size_t update_levels(std::uint32_t voxel, double time);
 
   /// Recomputes node `node` of level L >= 1 from its children.
   void recompute(std::size_t L, std::size_t node) {
@@ -131,9 +151,25 @@ class EventTree {
   std::size_t arg_off_[kMaxDepth + 1] = {};
   std::size_t depth_ = 0;
   std::size_t n_ = 0;
+  // Sibling minima, their lanes and voxels along sib_top_'s path (levels 1..depth_),
+  // valid while sib_valid_ (runner_up() -> update_top()).
+  double sib_min_[kMaxDepth + 1] = {};
+  unsigned sib_lane_[kMaxDepth + 1] = {};
+  std::uint32_t sib_arg_[kMaxDepth + 1] = {};
+  std::uint32_t sib_top_ = 0;
+  bool sib_valid_ = false;
 };
 
 inline void EventTree::update(std::uint32_t voxel, double time) {
+  const std::size_t written = update_levels(voxel, time);
+  // Writes on levels 0..written change the lines of levels 0..written on voxel's
+  // path; sib_top_'s path shares those lines iff the two voxels agree above bit
+  // kShift * (written + 1) (the lines of the nodes of level written + 1).
+  const std::uint64_t differ = std::uint64_t{voxel} ^ std::uint64_t{sib_top_};
+  if ((differ >> (kShift * (written + 1))) == 0) sib_valid_ = false;
+}
+
+inline std::size_t EventTree::update_levels(std::uint32_t voxel, double time) {
   const double old = min_[voxel];
   min_[voxel] = time;
   // Walk up while the changed child changes its parent. `value`/`arg` are the
@@ -161,14 +197,15 @@ inline void EventTree::update(std::uint32_t voxel, double time) {
       pmin_ref = value;
       parg_ref = arg;
     } else {
-      return;  // this parent, hence every ancestor, is unchanged
+      return L - 1;  // this parent, hence every ancestor, is unchanged
     }
-    if (pmin_ref == pmin && parg_ref == parg) return;
+    if (pmin_ref == pmin && parg_ref == parg) return L;
     rose = pmin_ref > pmin;
     value = pmin_ref;
     arg = parg_ref;
     child = node;
   }
+  return depth_;
 }
 
 }  // namespace sadr::ssa

@@ -145,17 +145,32 @@ class RdmeState {
   /// Whether some wall particle is free for species s.
   [[nodiscard]] bool has_free_walls(int s) const { return has_walls_ && free_slot_[s] >= 0; }
 
-  /// Hints the memory system that voxel i fires next: prefetches its record,
-  /// its out-edges and its counts (the event loop calls this for the new heap
-  /// top while it still updates the previous event's jump target).
+  /// Hints the memory system that voxel i fires next: prefetches its out-edges
+  /// (reading its record: the event loop calls this for the new tree top, whose
+  /// record and counts prefetch_record() requested one event earlier, while it
+  /// still updates the previous event's jump target).
   void prefetch(std::uint32_t i) const {
     const VoxelRecord& v = voxels_[i];  // a demand load of the record
     if (v.begin < v.end) {
       const DiffusionGraph::Edge* edges = graph_.edges.data();
-      __builtin_prefetch(edges + v.begin);      // first and last line
-      __builtin_prefetch(edges + (v.end - 1));  // of the edge row
+      detail::prefetch_line(edges + v.begin);      // first and last line
+      detail::prefetch_line(edges + (v.end - 1));  // of the edge row
     }
-    for (int s : diffusing_) __builtin_prefetch(counts_.data() + s * n_ + i);
+  }
+
+  /// Prefetches voxel i's record and counts (no load needed: the event loop calls
+  /// this two events ahead; prefetch() follows one event ahead, when the record is
+  /// in cache and gives the edge row's address).
+  void prefetch_record(std::uint32_t i) const {
+    detail::prefetch_line(voxels_.data() + i);
+    for (int s : diffusing_) detail::prefetch_line(counts_.data() + s * n_ + i);
+  }
+
+  /// Hints that voxel i's record and reaction constants are read soon (the jump
+  /// target's rate update; its counts line was just written by fire()).
+  void prefetch_target(std::uint32_t i) const {
+    detail::prefetch_line(voxels_.data() + i);
+    table_.prefetch(i);
   }
 
   /// Solver scratch: the cached total rate a_i of voxel i [1/T] (NsmSolver keeps it

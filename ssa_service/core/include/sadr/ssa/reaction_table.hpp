@@ -13,6 +13,7 @@
 
 #include "sadr/ssa/diffusion_graph.hpp"
 #include "sadr/ssa/model.hpp"
+#include "sadr/ssa/prefetch.hpp"
 #include "sadr/ssa/rate_conversion.hpp"
 
 namespace sadr::ssa {
@@ -38,6 +39,10 @@ class ReactionTable {
   /// Stochastic rate constant c of reaction r in voxel i [1/T].
   [[nodiscard]] double constant(std::uint32_t i, std::size_t r) const {
     return c_[i * reactions_.size() + r];
+  }
+  /// Hints that voxel i's constants are read soon (the event loop).
+  void prefetch(std::uint32_t i) const {
+    if (!reactions_.empty()) detail::prefetch_line(c_.data() + i * reactions_.size());
   }
   /// Propensity [1/T] of reaction r in voxel i; counts are species-major
   /// (X_si at counts[s * n_voxels + i]).
