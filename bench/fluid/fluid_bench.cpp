@@ -8,6 +8,7 @@
 /// costs TWO force evaluations (LAMMPS' Verlet costs one); both figures are printed.
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "fluid_test_scenes.hpp"
+#include "sadr/common/openmp_env.hpp"
 #include "sdpd/sdpd_backend.hpp"
 #ifdef SADR_HAVE_OPENMP
 #include <omp.h>
@@ -144,6 +146,8 @@ Result run_case(int dim, long n_target, int threads, int species, int steps,
 }  // namespace
 
 int main(int argc, char** argv) {
+  // the product's default: OMP_WAIT_POLICY=passive GOMP_SPINCOUNT=10000 unless either is set
+  sadr::ensure_bounded_openmp_wait(argv);
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
   if (argc > 1 &&
       std::strcmp(argv[1], "--one") == 0) {  // diagnostics: one 3D 1e4 single-thread case
@@ -161,10 +165,13 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::strcmp(argv[1], "--hash") == 0) {
     // diagnostics: state hashes after a few steps (3D/2D, with and without a species), to show
     // that an optimisation leaves the trajectory bit-identical (SADR_BENCH_NOISE applies).
+    // `--hash T S` runs S steps (default 5) on T threads (the hashes must not depend on T).
+    const int threads = argc > 2 ? std::max(1, std::atoi(argv[2])) : 1;
+    const int steps = argc > 3 ? std::max(1, std::atoi(argv[3])) : 5;
     for (int dim : {3, 2}) {
       for (int species : {0, 1}) {
         std::uint64_t h = 0;
-        run_case(dim, dim == 3 ? 8000 : 10000, 1, species, 5, &h);
+        run_case(dim, dim == 3 ? 8000 : 10000, threads, species, steps, &h);
         std::printf("%dD species %d: %016llx\n", dim, species, static_cast<unsigned long long>(h));
       }
     }

@@ -14,7 +14,6 @@ namespace sadr::fluid {
 namespace {
 constexpr std::uint64_t kMagic = 0x3144504453524441ULL;  // "ADRSSDPD1"-ish tag
 constexpr std::uint32_t kBlobVersion = 2;                // 2: + positions of the last list build
-constexpr std::uint32_t kMaxSubsteps = 65535;            // noise key: (step_index << 16) | substep
 
 void check_initial(const FluidModel& model, const ParticleState& s,
                    const std::vector<std::vector<double>>& c) {
@@ -129,6 +128,7 @@ void SdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   half_ok_ = !morris_ && species_.transported().empty() && !species_.has_reactions() &&
              std::none_of(wall_.begin(), wall_.end(), [](std::uint8_t w) { return w != 0; });
   time_ = 0;
+  prepared_ = false;
   initialized_ = true;
 }
 
@@ -140,10 +140,7 @@ void SdpdBackend::ensure_neighbors(const std::vector<double>& x) {
 #pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(max : moved)
     for (std::int64_t ii = 0; ii < ni; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      double d[3] = {x[3 * i] - list_ref_x_[3 * i], x[3 * i + 1] - list_ref_x_[3 * i + 1],
-                     x[3 * i + 2] - list_ref_x_[3 * i + 2]};
-      pbox_.minimum_image(d);
-      if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > skin_half2_) moved = 1;
+      if (moved_since_build(i, &x[3 * i])) moved = 1;
     }
     rebuild = moved != 0;
   }
@@ -153,8 +150,6 @@ void SdpdBackend::ensure_neighbors(const std::vector<double>& x) {
 // rebuild_neighbors: sdpd_half_pairs.hpp (with the slabs it assigns)
 
 StabilityLimits SdpdBackend::limits(const Y& y, const Rates& r) const {
-  StabilityLimits lim;
-  const double h = kernel_.support();
   const std::size_t n = mass_.size();
   double vmax2 = 0, rho_min = std::numeric_limits<double>::infinity(), amax2 = 0;
   const auto& bq = model_.boussinesq;
@@ -176,19 +171,26 @@ StabilityLimits SdpdBackend::limits(const Y& y, const Rates& r) const {
     }
     amax2 = std::max(amax2, a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
   }
+  return limits_from(vmax2, rho_min, amax2, r.max_visc_sum, r.max_k_sum, y);
+}
+
+StabilityLimits SdpdBackend::limits_from(double vmax2, double rho_min, double amax2,
+                                         double max_visc_sum, double max_k_sum, const Y& y) const {
+  StabilityLimits lim;
+  const double h = kernel_.support();
   // SPEC 5 coefficients are Morris' for the smoothing length h_M = h/2 (support = 2 h_M).
   const double hm = 0.5 * h;
   lim.acoustic = 0.25 * hm / (model_.sound_speed + std::sqrt(vmax2));
   if (model_.shear_viscosity > 0 && std::isfinite(rho_min)) {
     lim.viscous = 0.125 * rho_min * hm * hm / model_.shear_viscosity;
-    if (r.max_visc_sum > 0)
-      lim.viscous = std::min(lim.viscous, 1.0 / (model_.shear_viscosity * r.max_visc_sum));
+    if (max_visc_sum > 0)
+      lim.viscous = std::min(lim.viscous, 1.0 / (model_.shear_viscosity * max_visc_sum));
   }
   if (amax2 > 0) lim.body_force = 0.25 * std::sqrt(hm / std::sqrt(amax2));
   const double kmax = species_.max_diffusivity();
   if (kmax > 0) {
     lim.diffusion = 0.125 * hm * hm / kmax;
-    if (r.max_k_sum > 0) lim.diffusion = std::min(lim.diffusion, 1.0 / (2.0 * kmax * r.max_k_sum));
+    if (max_k_sum > 0) lim.diffusion = std::min(lim.diffusion, 1.0 / (2.0 * kmax * max_k_sum));
   }
   if (species_.has_reactions()) {
     ParticleState shape;
@@ -224,7 +226,29 @@ StepReport SdpdBackend::advance(std::uint64_t step_index, double time_step) {
   double remaining = time_step;
   std::uint32_t sub = 0;
   ytmp_.c.resize(y_.c.size());
-  while (remaining > 0) {
+  const bool fused = fused_ok();
+  while (remaining > 0 && fused) {
+    const std::uint64_t key = (step_index << 16) | sub;
+    bool check = false;
+    double dt = 0;
+    switch (dim) {
+      case 1:
+        dt = fused_substep<1>(step_index, key, remaining, sub, rep, check);
+        break;
+      case 2:
+        dt = fused_substep<2>(step_index, key, remaining, sub, rep, check);
+        break;
+      default:
+        dt = fused_substep<3>(step_index, key, remaining, sub, rep, check);
+        break;
+    }
+    remaining -= dt;
+    if (remaining < 1e-12 * time_step) remaining = 0;
+    time_ += dt;
+    ++sub;
+    if (check) check_health(step_index, sub);
+  }
+  while (remaining > 0 && !fused) {
     const std::uint64_t key = (step_index << 16) | sub;
     evaluate(y_, key, r0_, true);
     const auto [dt, lim_dt, lim_name] =
@@ -297,7 +321,12 @@ StepReport SdpdBackend::advance(std::uint64_t step_index, double time_step) {
   rep.min_density = std::numeric_limits<double>::infinity();
   rep.max_density = 0;
   double vmax2 = 0;
-  for (std::size_t i = 0; i < n; ++i) {
+  if (fused) {  // (from the last corrector loop)
+    rep.min_density = report_rho_min_;
+    rep.max_density = report_rho_max_;
+    vmax2 = report_vmax2_;
+  }
+  for (std::size_t i = 0; i < n && !fused; ++i) {
     rep.min_density = std::min(rep.min_density, y_.rho[i]);
     rep.max_density = std::max(rep.max_density, y_.rho[i]);
     if (wall_[i]) continue;
@@ -410,6 +439,7 @@ void SdpdBackend::set_concentrations(int species, std::span<const double> values
   }
   y_.c[species].assign(values.begin(), values.end());
   species_.apply_dirichlet(y_.c);
+  prepared_ = false;
 }
 
 std::string SdpdBackend::save() const {
@@ -467,6 +497,7 @@ void SdpdBackend::restore(std::string_view blob) {
   if (!r.at_end()) throw InvalidArgument("restore: trailing bytes in state blob");
   y_ = std::move(y);
   time_ = t;
+  prepared_ = false;
   list_ref_x_.clear();
   if (!ref.empty()) rebuild_neighbors(ref);
 }

@@ -15,6 +15,9 @@
 #pragma once
 
 #include <array>
+#include <atomic>
+#include <cmath>
+#include <limits>
 #include <memory>
 
 #include "sadr/fluid/fluid_backend.hpp"
@@ -75,12 +78,62 @@ class SdpdBackend final : public FluidBackend {
   template <int D>
   void summation_half(Y& y);
   /// Calls per_slab(first, last, scratch) for the members [first, last) of every slab, slab
-  /// phase by slab phase.
+  /// phase by slab phase (opens its own parallel region).
   template <class PerSlab>
   void slab_phases(PerSlab&& per_slab);
+  /// The same, called by every thread of an enclosing parallel region (or outside one): each
+  /// thread takes a contiguous, work-balanced run of the slabs of a phase; slabs wait only for
+  /// the conflicting slabs of earlier phases (no barrier). Then, unless `after` is nullptr,
+  /// after(first, last) runs on the members of each of the thread's slabs once every slab
+  /// writing to them is done. No barrier at the end.
+  template <class PerSlab, class After>
+  void slab_phases_team(PerSlab&& per_slab, After&& after);
+  /// Half path pair loop into hacc_ (hin_ filled, hacc_ zeroed), as slab_phases_team.
+  template <int D, class After>
+  void half_pairs_team(const Y& y, std::uint64_t noise_step, bool noise_on,
+                       const SdpdPairParams& pp, After&& after);
+  /// Half path: the rates of particle i from hacc_[i] (acc, acc_noise: 3 entries; drho: 1).
+  template <int D>
+  void half_rates(std::size_t i, const Y& y, bool noise_on, double* acc, double* acc_noise,
+                  double* drho, double& max_visc) const;
+  template <int D>
+  [[nodiscard]] SdpdPairParams make_pair_params(bool noise_on) const;
+  /// One predictor-corrector sub-step of the half path with the continuity density in two
+  /// parallel regions (one per force evaluation; the per-particle loops ride along): returns
+  /// the sub-step length.
+  template <int D>
+  double fused_substep(std::uint64_t step_index, std::uint64_t key, double remaining,
+                       std::uint32_t sub, StepReport& rep, bool& unhealthy);
+  /// Fills hin_ from y_ (the noise factor if noise_on), zeroes hacc_, sets y_moved_.
+  void prepare_half(bool noise_on);
+  [[nodiscard]] bool fused_ok() const {
+    return half_ok_ && model_.density_mode == DensityMode::kContinuity;
+  }
   void ensure_neighbors(const std::vector<double>& x);
   void rebuild_neighbors(const std::vector<double>& x);  ///< list + slabs at positions x
   StabilityLimits limits(const Y& y, const Rates& r) const;
+  /// limits() from the particle maxima/minimum it reduces (max |v|^2 and |a_body|^2 over fluid
+  /// particles, min rho).
+  StabilityLimits limits_from(double vmax2, double rho_min, double amax2, double max_visc_sum,
+                              double max_k_sum, const Y& y) const;
+  /// Whether the position xi of particle i has moved more than skin/2 since the list build.
+  [[nodiscard]] bool moved_since_build(std::size_t i, const double* xi) const {
+    double d[3] = {xi[0] - list_ref_x_[3 * i], xi[1] - list_ref_x_[3 * i + 1],
+                   xi[2] - list_ref_x_[3 * i + 2]};
+    pbox_.minimum_image(d);
+    return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > skin_half2_;
+  }
+  /// Half path: hin_[i] from the state y.
+  void fill_half_in(std::size_t i, const Y& y, bool noise_on) {
+    const double nd_inv = mass_[i] / y.rho[i];  // 1/d_i, bitwise the volume m_i/rho_i
+    HalfIn& p = hin_[i];
+    for (int a = 0; a < 3; ++a) p.v[a] = y.v[3 * i + a];
+    p.pd2 = eos_.pressure(y.rho[i]) * nd_inv * nd_inv;
+    p.inv_nd = nd_inv;
+    p.m = mass_[i];
+    p.rho = y.rho[i];
+    p.sqrt_inv_nd = noise_on ? std::sqrt(nd_inv) : 0.0;
+  }
   void check_health(std::uint64_t step_index, std::uint32_t substep) const;
   void require_initialized(const char* what) const;
 
@@ -95,13 +148,35 @@ class SdpdBackend final : public FluidBackend {
   std::uint64_t list_builds_ = 0;
   /// Half-pair path (no wall particles, no Morris walls, no transported species, no reactions):
   /// slabs along the last active axis, assigned at each list build (sdpd_half_pairs.hpp).
-  static constexpr std::uint32_t kSlabReach = 2;  ///< slab width >= list cutoff / kSlabReach
+  static constexpr std::uint32_t kSlabReach = 2;        ///< slab width >= list cutoff / kSlabReach
+  static constexpr std::uint32_t kMaxSubsteps = 65535;  ///< noise key: (step << 16) | substep
   bool half_ok_ = false;
   std::uint32_t slab_count_ = 0;
   bool slab_wrap_ = false;                   ///< slab axis periodic
   std::vector<std::uint32_t> slab_of_;       ///< particle -> slab
   std::vector<std::uint32_t> slab_start_;    ///< CSR over slabs (slab_count_ + 1)
   std::vector<std::uint32_t> slab_members_;  ///< particles of each slab, by index
+  /// Per colour: prefix sums of the work (members + forward list entries) of its slabs, for
+  /// the work-balanced split among threads (slab_phases_team).
+  std::array<std::vector<std::uint64_t>, kSlabReach + 1> colour_work_;
+  /// Per slab: the number of the last slab pass that has finished it (slab_phases_team).
+  std::unique_ptr<std::atomic<std::uint32_t>[]> slab_done_;
+  std::uint32_t slab_done_count_ = 0;
+  std::uint32_t slab_epoch_ = 0;  ///< number of the current slab pass (never 0)
+  void next_slab_pass();          ///< before each parallel region running slab_phases_team
+  /// fused_substep: hin_ holds y_ (with the noise factor if temperature > 0), hacc_ is zero and
+  /// y_moved_ tells whether y_.x has moved more than skin/2 since the list build. Cleared by
+  /// every other use of hin_/hacc_ (evaluate) and by initialize/restore.
+  bool prepared_ = false;
+  bool y_moved_ = true;
+  double report_vmax2_ = 0, report_rho_min_ = 0, report_rho_max_ = 0;  ///< of the last corrector
+  /// fused_substep: per-thread maxima / minima / flags of the per-particle work
+  struct alignas(64) FusedPartial {
+    double max_visc = 0, vmax2 = 0, amax2 = 0;
+    double rho_min = std::numeric_limits<double>::infinity(), rho_max = 0;
+    int moved = 0, bad = 0;
+  };
+  std::vector<FusedPartial> fused_partials_;
   /// Half path: what a pair reads of particle j, one 64-byte line per particle (the gather of a
   /// neighbour touches one line instead of seven arrays; 2D 1e5 streams through L3), and what it
   /// adds to j (force, noise impulse, continuity, sum_j F_ij/d_j for the viscous limit).

@@ -12,7 +12,9 @@
 /// a multiple of R + 1 above 2R). Phase p runs the slabs s = p mod (R + 1) in parallel; slab s
 /// writes only to slabs s..s+R, so no two threads write the same particle, and each particle
 /// receives its contributions in an order fixed by (phase, slab, member index): independent
-/// of the thread count. The slab assignment depends on the positions at the last list build,
+/// of the thread count. There is no barrier between the phases: a slab waits (release/acquire
+/// flags) only for the slabs of earlier phases within R of it, the ones whose writes it must
+/// follow (slab_phases_team). The slab assignment depends on the positions at the last list build,
 /// which are saved with the state (blob version 2), so restarts stay bit-exact. The pair values are
 /// those of the compact block (sdpd_pair_block.hpp); the j side uses the exact negatives (forces,
 /// noise) and its own continuity / viscous-limit terms, so momentum is conserved to round-off.
@@ -24,8 +26,13 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <memory>
 #include <string>
+#include <thread>
+#include <type_traits>
+#include <utility>
 
 #include "sadr/common/status.hpp"
 
@@ -96,7 +103,36 @@ void SdpdBackend::rebuild_neighbors(const std::vector<double>& x) {
   nlist_.offsets[n] = out;
   nlist_.indices.resize(out);
   nlist_.indices.shrink_to_fit();
+  if (slab_done_count_ != slab_count_) {
+    slab_done_ = std::make_unique<std::atomic<std::uint32_t>[]>(slab_count_);
+    for (std::uint32_t s = 0; s < slab_count_; ++s) slab_done_[s].store(0);
+    slab_done_count_ = slab_count_;
+  }
+  // Work per slab (its members plus their forward entries), prefix-summed per colour: the
+  // slabs hold one or two lattice rows/layers (width ~0.58 cutoff), so equal slab counts per
+  // thread are not equal work.
+  constexpr std::uint32_t colours = kSlabReach + 1;
+  for (std::uint32_t c = 0; c < colours; ++c) {
+    auto& w = colour_work_[c];
+    w.assign(1, 0);
+    for (std::uint32_t s = c; s < slab_count_; s += colours) {
+      std::uint64_t work = slab_start_[s + 1] - slab_start_[s];
+      for (std::uint32_t k = slab_start_[s]; k < slab_start_[s + 1]; ++k)
+        work += nlist_.of(slab_members_[k]).size();
+      w.push_back(w.back() + work);
+    }
+  }
 }
+
+namespace {
+inline int sdpd_team_size() {
+#ifdef SADR_HAVE_OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+}  // namespace
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
     !defined(__SANITIZE_ADDRESS__)
@@ -163,32 +199,119 @@ SADR_SIDE_CLONES void half_side_terms(const SdpdPairBlock& b,
   }
 }
 
-template <class PerSlab>
-void SdpdBackend::slab_phases(PerSlab&& per_slab) {
-  [[maybe_unused]] const auto ni = static_cast<std::int64_t>(mass_.size());
+template <class PerSlab, class After>
+void SdpdBackend::slab_phases_team(PerSlab&& per_slab, After&& after) {
   constexpr std::uint32_t colours = kSlabReach + 1;
-  // (the summation-density pass runs before evaluate_dim sizes the scratch; UBSan found it)
-  if (scratch_.size() < static_cast<std::size_t>(max_threads()))
-    scratch_.resize(static_cast<std::size_t>(max_threads()));
-    // One parallel region for the three colours (the implicit barrier of each `omp for` orders
-    // them): fewer thread wake-ups on a loaded machine than one region per colour.
-#pragma omp parallel if (ni > kMinParallel)
-  {
-    PairScratch& sc = scratch_[static_cast<std::size_t>(thread_index())];
-    for (std::uint32_t phase = 0; phase < colours; ++phase) {
-      const auto tasks = static_cast<std::int64_t>((slab_count_ + colours - 1 - phase) / colours);
-      // static: each thread sweeps a contiguous run of slabs in every phase, i.e. about the same
-      // part of the box (and of the index range the static per-particle loops give it), so the
-      // particle data stays in its core's cache between phases and evaluations (dynamic, 1 dealt
-      // the slabs round-robin). The result does not depend on the assignment.
-#pragma omp for schedule(static)
-      for (std::int64_t t = 0; t < tasks; ++t) {
-        const auto s = static_cast<std::size_t>(phase + colours * t);
-        per_slab(slab_members_.data() + slab_start_[s], slab_members_.data() + slab_start_[s + 1],
-                 sc);
+  const auto nt = static_cast<std::uint64_t>(sdpd_team_size());
+  const auto t = static_cast<std::uint64_t>(thread_index());
+  PairScratch& sc = scratch_[t];
+  const std::uint32_t epoch = slab_epoch_;
+  // Slab s writes to the particles of slabs s..s+R, so two slabs conflict iff they are at most
+  // R apart; the particles of slab q receive from slabs q-R..q, one of each colour, in colour
+  // order. Instead of a barrier after each colour, slab s waits for the conflicting slabs of
+  // lower colours only (point-to-point, release/acquire flags holding the pass number): the
+  // same order of every sum, but a thread does not wait for the whole other half of the box.
+  auto wait_done = [&](std::uint32_t sq) {
+    for (int spin = 0; slab_done_[sq].load(std::memory_order_acquire) != epoch; ++spin) {
+      if (spin < 4096) {
+#if defined(__x86_64__) || defined(__i386__)
+        __builtin_ia32_pause();
+#endif
+      } else {
+        std::this_thread::yield();
+      }
+    }
+  };
+  // slab at offset o from s (o in [-R, R]), or slab_count_ if there is none (walled axis)
+  auto slab_at = [&](std::uint32_t s, std::int64_t o) -> std::uint32_t {
+    const std::int64_t q = static_cast<std::int64_t>(s) + o;
+    if (slab_wrap_) return static_cast<std::uint32_t>((q + slab_count_) % slab_count_);
+    return q < 0 || q >= static_cast<std::int64_t>(slab_count_) ? slab_count_
+                                                                : static_cast<std::uint32_t>(q);
+  };
+  // The run [k0, k1) of the phase's slabs that this thread owns: contiguous (about the same part
+  // of the box in every phase, so its particle data stays in its core's cache), cut by work:
+  // slab k goes to the thread whose share holds the middle of its work. The result does not
+  // depend on the assignment (each particle's sums keep the slab/member order).
+  auto own_run = [&](std::uint32_t phase) {
+    const std::vector<std::uint64_t>& w = colour_work_[phase];
+    const std::uint64_t tasks = w.size() - 1, total = w.back();
+    auto owner = [&](std::uint64_t k) {
+      const std::uint64_t o = total > 0 ? (w[k] + w[k + 1]) * nt / (2 * total) : k * nt / tasks;
+      return std::min(o, nt - 1);
+    };
+    std::uint64_t k0 = 0;
+    while (k0 < tasks && owner(k0) < t) ++k0;
+    std::uint64_t k1 = k0;
+    while (k1 < tasks && owner(k1) == t) ++k1;
+    return std::pair<std::uint64_t, std::uint64_t>{k0, k1};
+  };
+  auto members = [&](std::uint32_t s) {
+    return std::pair<const std::uint32_t*, const std::uint32_t*>{
+        slab_members_.data() + slab_start_[s], slab_members_.data() + slab_start_[s + 1]};
+  };
+  // The two ends of a run (next to other threads' slabs) go first: the other threads wait for
+  // them.
+  auto each_end_first = [](std::uint64_t k0, std::uint64_t k1, auto&& f) {
+    if (k1 > k0) f(k0);
+    if (k1 > k0 + 1) f(k1 - 1);
+    for (std::uint64_t k = k0 + 1; k + 1 < k1; ++k) f(k);
+  };
+  for (std::uint32_t phase = 0; phase < colours; ++phase) {
+    const auto [k0, k1] = own_run(phase);
+    each_end_first(k0, k1, [&](std::uint64_t k) {
+      const auto s = static_cast<std::uint32_t>(phase + colours * k);
+      if (nt > 1) {
+        for (std::int64_t o = -static_cast<std::int64_t>(kSlabReach); o <= kSlabReach; ++o) {
+          const std::uint32_t q = slab_at(s, o);
+          if (o != 0 && q < slab_count_ && q % colours < phase) wait_done(q);
+        }
+      }
+      const auto [first, last] = members(s);
+      per_slab(first, last, sc);
+      slab_done_[s].store(epoch, std::memory_order_release);
+    });
+  }
+  if constexpr (!std::is_same_v<std::decay_t<After>, std::nullptr_t>) {
+    // after(first, last) on the members of each own slab q once its writers q-R..q are done
+    // (nobody reads or writes its particles' hin_/hacc_ entries afterwards in this pass). The
+    // interior of the runs first, the ends (which may wait for other threads) last.
+    for (int pass = 0; pass < 2; ++pass) {
+      for (std::uint32_t phase = 0; phase < colours; ++phase) {
+        const auto [k0, k1] = own_run(phase);
+        for (std::uint64_t k = k0; k < k1; ++k) {
+          const bool end = k == k0 || k + 1 == k1;
+          if (end != (pass == 1)) continue;
+          const auto s = static_cast<std::uint32_t>(phase + colours * k);
+          if (nt > 1) {
+            for (std::int64_t o = -static_cast<std::int64_t>(kSlabReach); o < 0; ++o) {
+              const std::uint32_t q = slab_at(s, o);
+              if (q < slab_count_) wait_done(q);
+            }
+          }
+          const auto [first, last] = members(s);
+          after(first, last);
+        }
       }
     }
   }
+}
+
+void SdpdBackend::next_slab_pass() {
+  if (++slab_epoch_ == 0) slab_epoch_ = 1;
+}
+
+template <class PerSlab>
+void SdpdBackend::slab_phases(PerSlab&& per_slab) {
+  [[maybe_unused]] const auto ni = static_cast<std::int64_t>(mass_.size());
+  // (the summation-density pass runs before evaluate_dim sizes the scratch; UBSan found it)
+  if (scratch_.size() < static_cast<std::size_t>(max_threads()))
+    scratch_.resize(static_cast<std::size_t>(max_threads()));
+  // One parallel region for the three colours (the barriers order them): fewer thread
+  // wake-ups on a loaded machine than one region per colour.
+  next_slab_pass();
+#pragma omp parallel if (ni > kMinParallel)
+  slab_phases_team(per_slab, nullptr);
 }
 
 template <int D>
@@ -217,11 +340,9 @@ void SdpdBackend::summation_half(Y& y) {
   });
 }
 
-template <int D>
-void SdpdBackend::evaluate_half(const Y& y, std::uint64_t noise_step, Rates& out, bool noise_on,
-                                const SdpdPairParams& pp, double c_d) {
-  const std::size_t n = mass_.size();
-  const auto ni = static_cast<std::int64_t>(n);
+template <int D, class After>
+void SdpdBackend::half_pairs_team(const Y& y, std::uint64_t noise_step, bool noise_on,
+                                  const SdpdPairParams& pp, After&& after) {
   const double h = kernel_.support();
   const double h2 = h * h;
   const bool continuity = model_.density_mode != DensityMode::kSummation;
@@ -233,7 +354,7 @@ void SdpdBackend::evaluate_half(const Y& y, std::uint64_t noise_step, Rates& out
   // overheads per 12 pairs. Every pair gives the same bits as alone, and the scatter below
   // keeps the particle order, so the result is bit-identical to one particle per block.
   constexpr std::size_t kGroupEntries = 64;  // list entries per block (3D: one particle)
-  slab_phases([&](const std::uint32_t* first, const std::uint32_t* last, PairScratch& sc) {
+  auto per_slab = [&](const std::uint32_t* first, const std::uint32_t* last, PairScratch& sc) {
     while (first != last) {
       const std::uint32_t* group_end = first;
       std::size_t entries = 0;
@@ -362,28 +483,48 @@ void SdpdBackend::evaluate_half(const Y& y, std::uint64_t noise_step, Rates& out
       }
       first = group_end;
     }
-  });
-  double max_visc = 0;
+  };
+  slab_phases_team(per_slab, after);
+}
+
+template <int D>
+inline void SdpdBackend::half_rates(std::size_t i, const Y& y, bool noise_on, double* acc,
+                                    double* acc_noise, double* drho, double& max_visc) const {
+  const HalfAcc& ai = hacc_[i];
+  max_visc = std::max(max_visc, ai.fsum / y.rho[i]);
+  const double inv_m = 1.0 / mass_[i];
   const auto& bq = model_.boussinesq;
+  double body[3] = {model_.gravity[0], model_.gravity[1], model_.gravity[2]};
+  if (bq.species >= 0) {
+    const double bqa = bq.coefficient * (y.c[bq.species][i] - bq.reference);
+    for (int a = 0; a < 3; ++a) body[a] += bqa * bq.direction[a];
+  }
+  for (int a = 0; a < 3; ++a) acc[a] = a < D ? ai.force[a] * inv_m + body[a] : 0.0;
+  if (noise_on) {
+    for (int a = 0; a < 3; ++a) acc_noise[a] = a < D ? ai.noise[a] * inv_m : 0.0;
+  }
+  *drho = ai.drho;
+}
+
+template <int D>
+void SdpdBackend::evaluate_half(const Y& y, std::uint64_t noise_step, Rates& out, bool noise_on,
+                                const SdpdPairParams& pp, double c_d) {
+  const std::size_t n = mass_.size();
+  const auto ni = static_cast<std::int64_t>(n);
+  if (scratch_.size() < static_cast<std::size_t>(max_threads()))
+    scratch_.resize(static_cast<std::size_t>(max_threads()));
+  next_slab_pass();
+#pragma omp parallel if (ni > kMinParallel)
+  half_pairs_team<D>(y, noise_step, noise_on, pp, nullptr);
+  double max_visc = 0;
   double* acc = out.acc.data();
   double* accn = noise_on ? out.acc_noise.data() : nullptr;
   double* drho = out.drho.data();
 #pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(max : max_visc)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const HalfAcc& ai = hacc[i];
-    max_visc = std::max(max_visc, ai.fsum / y.rho[i]);
-    const double inv_m = 1.0 / mass_[i];
-    double body[3] = {model_.gravity[0], model_.gravity[1], model_.gravity[2]};
-    if (bq.species >= 0) {
-      const double bqa = bq.coefficient * (y.c[bq.species][i] - bq.reference);
-      for (int a = 0; a < 3; ++a) body[a] += bqa * bq.direction[a];
-    }
-    for (int a = 0; a < 3; ++a) acc[3 * i + a] = a < D ? ai.force[a] * inv_m + body[a] : 0.0;
-    if (noise_on) {
-      for (int a = 0; a < 3; ++a) accn[3 * i + a] = a < D ? ai.noise[a] * inv_m : 0.0;
-    }
-    drho[i] = ai.drho;
+    half_rates<D>(i, y, noise_on, &acc[3 * i], noise_on ? &accn[3 * i] : nullptr, &drho[i],
+                  max_visc);
   }
   out.max_k_sum = 0;
   out.max_visc_sum = 2.0 * c_d * max_visc;
