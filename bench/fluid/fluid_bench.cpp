@@ -146,8 +146,8 @@ Result run_case(int dim, long n_target, int threads, int species, int steps,
 }  // namespace
 
 int main(int argc, char** argv) {
-  // the product's default: OMP_WAIT_POLICY=passive GOMP_SPINCOUNT=10000 unless either is set
-  sadr::ensure_bounded_openmp_wait(argv);
+  // the product's default: OMP_WAIT_POLICY=passive unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set
+  sadr::ensure_passive_openmp_wait(argv);
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
   if (argc > 1 &&
       std::strcmp(argv[1], "--one") == 0) {  // diagnostics: one 3D 1e4 single-thread case

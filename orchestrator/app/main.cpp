@@ -10,7 +10,7 @@
 using namespace sadr::orchestrator;
 
 int main(int argc, char** argv) {
-  sadr::ensure_bounded_openmp_wait(argv);  // see openmp_env.hpp
+  sadr::ensure_passive_openmp_wait(argv);  // see openmp_env.hpp
   CLI::App app{
       std::string("sadr ") + sadr::kVersion +
       ": stochastic advection-diffusion-reaction in particle fluids.\n"

@@ -6,7 +6,7 @@
 #include "sadr/wire/service_main.hpp"
 
 int main(int argc, char** argv) {
-  sadr::ensure_bounded_openmp_wait(argv);  // the graph build may use OpenMP: see openmp_env.hpp
+  sadr::ensure_passive_openmp_wait(argv);  // the graph build may use OpenMP: see openmp_env.hpp
   return sadr::wire::run_service_main(argc, argv, sadr::common::v1::SERVICE_KIND_SSA, [] {
     return std::make_unique<sadr::ssa::SsaServiceHandler>();
   });
