@@ -124,16 +124,6 @@ void SdpdBackend::rebuild_neighbors(const std::vector<double>& x) {
   }
 }
 
-namespace {
-inline int sdpd_team_size() {
-#ifdef SADR_HAVE_OPENMP
-  return omp_get_num_threads();
-#else
-  return 1;
-#endif
-}
-}  // namespace
-
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
     !defined(__SANITIZE_ADDRESS__)
 // AVX2 has no FMA, so the clone cannot contract mul + add (results equal the default clone's).
@@ -202,7 +192,7 @@ SADR_SIDE_CLONES void half_side_terms(const SdpdPairBlock& b,
 template <class PerSlab, class After>
 void SdpdBackend::slab_phases_team(PerSlab&& per_slab, After&& after) {
   constexpr std::uint32_t colours = kSlabReach + 1;
-  const auto nt = static_cast<std::uint64_t>(sdpd_team_size());
+  const auto nt = static_cast<std::uint64_t>(team_size());
   const auto t = static_cast<std::uint64_t>(thread_index());
   PairScratch& sc = scratch_[t];
   const std::uint32_t epoch = slab_epoch_;

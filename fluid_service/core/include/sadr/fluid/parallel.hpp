@@ -23,6 +23,15 @@ inline int max_threads() {
   return 1;
 #endif
 }
+/// Threads in the calling thread's team (1 outside a parallel region / without OpenMP):
+/// may be fewer than requested, so work splits follow this, not max_threads().
+inline int team_size() {
+#ifdef SADR_HAVE_OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
 /// Index of the calling thread in its parallel region (0 outside one / without OpenMP).
 inline int thread_index() {
 #ifdef SADR_HAVE_OPENMP
