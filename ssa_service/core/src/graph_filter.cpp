@@ -24,6 +24,12 @@ namespace {
 
 using Edge = DiffusionGraph::Edge;
 
+/// The lane reduction of graph_filter.hpp: ((s0 + s4) + (s2 + s6)) + ((s1 + s5) + (s3 + s7)).
+inline double sum8_lanes(const double* s) {
+  const double t0 = s[0] + s[4], t1 = s[1] + s[5], t2 = s[2] + s[6], t3 = s[3] + s[7];
+  return (t0 + t2) + (t1 + t3);
+}
+
 template <int D>
 std::uint32_t filter_scalar(const FilterParams& p, std::size_t i0, std::size_t i1, Edge* e,
                             const FilterOutputs& o) {
@@ -69,7 +75,8 @@ std::uint32_t filter_scalar(const FilterParams& p, std::size_t i0, std::size_t i
     // Keeps the candidates of [k0, k1) with r < h and a positive weight; returns
     // their weight sum (row order). Two calls: non-wall part, then wall part.
     auto keep = [&](std::uint32_t k0, std::uint32_t k1, auto to_wall) {
-      double sum = 0;
+      double lane[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+      const std::uint32_t first = out;
       for (std::uint32_t k = k0; k < k1; ++k) {
         const double r2 = r2s[k];
         if (!(r2 < p.h2)) continue;
@@ -87,10 +94,10 @@ std::uint32_t filter_scalar(const FilterParams& p, std::size_t i0, std::size_t i
           w_ji = 2.0 * vi * reg_f;
         }
         if (!(w_ij > 0 && w_ji > 0)) continue;  // coincident particles (reg = 0): no edge
+        lane[(out - first) % 8] += w_ij;
         e[out++] = Edge{w_ij, j};
-        sum += w_ij;
       }
-      return sum;
+      return sum8_lanes(lane);
     };
     o.row_start[i] = out;
     const double sum_nowall = keep(0, ks - kb, std::false_type{});
@@ -133,6 +140,7 @@ __attribute__((target("avx512f"))) std::uint32_t filter_avx512(const FilterParam
   for (int w = 0; w < 32; ++w) perm[w] = w % 3 < 2 ? 2 * (w / 3) + w % 3 : 16 + w / 3;
   const __m512i perm_lo = _mm512_load_si512(perm), perm_hi = _mm512_load_si512(perm + 16);
   const __m512i even = _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14);
+  const __m512i iota = _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 6, 7), seven = _mm512_set1_epi64(7);
   const __m512i odd = _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15);
   const double* x = p.x;
   std::uint32_t out = 0;
@@ -152,16 +160,18 @@ __attribute__((target("avx512f"))) std::uint32_t filter_avx512(const FilterParam
       const bool to_wall = pass == 1;
       if (to_wall) o.split[i] = out;
       const std::uint32_t k0 = to_wall ? ks : kb, k1 = to_wall ? ke : ks;
-      __m128d acc = _mm_setzero_pd();  // the part's weight sum in lane 0
+      __m512d acc = zero;  // the part's weight sums: its edge q in lane q % 8
+      const std::uint32_t first = out;
       for (std::uint32_t k = k0; k < k1; k += 8) {
         const std::uint32_t rem = k1 - k;
         const __mmask8 lanes = rem >= 8 ? 0xFF : static_cast<__mmask8>((1u << rem) - 1u);
         const __m512i idx16 = _mm512_maskz_loadu_epi32(lanes, p.cand + k);
-        // Targets by scalar loads (lanes past the row repeat its last target): on the
-        // development machine (Zen 4) 8 scalar loads and a few shuffles beat a gather,
-        // 95 vs 125 ns/voxel for the filter in 2D.
+        // Targets by scalar loads; lanes past the row read the next row's targets (or
+        // the kCandSlack indices after the last row), valid particles whose results
+        // `lanes` masks off. 8 scalar loads and a few shuffles beat a gather: 95 vs
+        // 125 ns/voxel for the filter in 2D on Zen 4, 72 vs 87 on this machine's Zen 5.
         std::uint32_t js[8];
-        for (int l = 0; l < 8; ++l) js[l] = p.cand[k + std::min<std::uint32_t>(l, rem - 1)];
+        for (int l = 0; l < 8; ++l) js[l] = p.cand[k + l];
         __m512d xjs[3];
         if constexpr (D == 2) {
           // 2D: the (x, y) pairs by 128-bit loads, split by two permutes.
@@ -217,35 +227,23 @@ __attribute__((target("avx512f"))) std::uint32_t filter_avx512(const FilterParam
         _mm512_storeu_si512(dst, _mm512_permutex2var_epi32(wci, perm_lo, tc));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + 64),
                             _mm512_castsi512_si256(_mm512_permutex2var_epi32(wci, perm_hi, tc)));
-        // The sum in row order, as the scalar path: lane by lane, in registers (a
-        // vector store reloaded as scalars stalls store forwarding). Lanes past the
-        // count are +0.0, which leaves the sum (> 0 or +0) unchanged bit for bit.
-        const __m128d l0 = _mm512_castpd512_pd128(wc);
-        const __m128d l2 =
-            _mm512_castpd512_pd128(_mm512_castsi512_pd(_mm512_alignr_epi64(wci, wci, 2)));
-        const __m128d l4 =
-            _mm512_castpd512_pd128(_mm512_castsi512_pd(_mm512_alignr_epi64(wci, wci, 4)));
-        const __m128d l6 =
-            _mm512_castpd512_pd128(_mm512_castsi512_pd(_mm512_alignr_epi64(wci, wci, 6)));
-        acc = _mm_add_sd(acc, l0);
-        acc = _mm_add_sd(acc, _mm_unpackhi_pd(l0, l0));
-        acc = _mm_add_sd(acc, l2);
-        acc = _mm_add_sd(acc, _mm_unpackhi_pd(l2, l2));
+        // Compressed lane l is the part's edge out - first + l: rotated into its lane.
+        const __m512i rot = _mm512_and_si512(
+            _mm512_sub_epi64(iota, _mm512_set1_epi64(static_cast<long long>(out - first))), seven);
+        acc = _mm512_add_pd(acc, _mm512_permutexvar_pd(rot, wc));
         const int cnt = __builtin_popcount(keep);
-        if (cnt > 4) {  // compressed lanes 4-7 hold survivors
-          acc = _mm_add_sd(acc, l4);
-          acc = _mm_add_sd(acc, _mm_unpackhi_pd(l4, l4));
-          acc = _mm_add_sd(acc, l6);
-          acc = _mm_add_sd(acc, _mm_unpackhi_pd(l6, l6));
-        }
         out += static_cast<std::uint32_t>(cnt);
       }
-      sums[pass] = _mm_cvtsd_f64(acc);
+      // sum8_lanes(): (s0 + s4, s1 + s5, s2 + s6, s3 + s7), then (t0 + t2, t1 + t3), then u0 + u1.
+      const __m256d t = _mm256_add_pd(_mm512_castpd512_pd256(acc), _mm512_extractf64x4_pd(acc, 1));
+      const __m128d u = _mm_add_pd(_mm256_castpd256_pd128(t), _mm256_extractf128_pd(t, 1));
+      sums[pass] = _mm_cvtsd_f64(_mm_add_sd(u, _mm_unpackhi_pd(u, u)));
     }
     o.sum_nowall[i] = sums[0];
     o.sum_all[i] = sums[0] + sums[1];
     // min is exact, so the lane order does not matter.
-    o.wall_distance[i] = std::sqrt(_mm512_reduce_min_pd(wall_r2));
+    o.wall_distance[i] = ks == ke ? std::numeric_limits<double>::infinity()
+                                  : std::sqrt(_mm512_reduce_min_pd(wall_r2));
   }
   return out;
 }

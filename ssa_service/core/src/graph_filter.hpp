@@ -11,6 +11,13 @@
 /// scalar one and an AVX-512F one (8 candidates per step: loads, minimum
 /// image, r^2 < h^2, weights, register compress of the survivors). The AVX-512F
 /// one runs when the CPU has it; tests check both give the same bits.
+///
+/// Row sums: the weights of a row part (non-wall, then wall targets) are summed in
+/// 8 lanes, edge q of the part into lane q % 8 (by edge, not by candidate: the
+/// candidates depend on the last search, the edges do not), and the lanes reduced as
+/// ((s0 + s4) + (s2 + s6)) + ((s1 + s5) + (s3 + s7)) (sum8_lanes()). Both paths do
+/// exactly this, so the sums agree bit for bit; the SIMD path keeps the lanes in one
+/// register (a serial sum was a 32-cycle dependency chain per 8 candidates).
 #pragma once
 
 #include <cstddef>
@@ -34,8 +41,13 @@ struct FilterParams {
   const double* vol = nullptr;
   const std::uint32_t* cand_start = nullptr;  ///< N + 1
   const std::uint32_t* cand_split = nullptr;  ///< first wall candidate of each row
-  const std::uint32_t* cand = nullptr;        ///< rows: non-wall targets, then wall targets
+  /// Rows: non-wall targets, then wall targets; followed by kCandSlack valid particle
+  /// indices (the SIMD path loads 8 targets at a time and masks off those past the row).
+  const std::uint32_t* cand = nullptr;
 };
+
+/// Valid particle indices the candidate array holds past its last row (see FilterParams::cand).
+inline constexpr std::size_t kCandSlack = 8;
 
 /// Per-row outputs of filter_rows() (arrays indexed by particle).
 struct FilterOutputs {

@@ -59,7 +59,9 @@ class GraphBuilder {
   [[nodiscard]] std::uint64_t builds() const { return builds_; }      ///< build() calls
   [[nodiscard]] std::uint64_t searches() const { return searches_; }  ///< cell-list searches
   /// Directed candidate pairs in the current list.
-  [[nodiscard]] std::size_t candidate_count() const { return cand_.size(); }
+  [[nodiscard]] std::size_t candidate_count() const {
+    return cand_start_.empty() ? 0 : cand_start_.back();
+  }
 
  private:
   /// Wraps the current positions into xw_; true if a new search is needed.
@@ -76,13 +78,15 @@ class GraphBuilder {
   [[nodiscard]] std::size_t row_split(int t, int nt) const;
 
   static constexpr std::size_t kMinRowsPerThread = 1024;
+  /// Thread ranges the parallel filter supports (threads() beyond this are not used).
+  static constexpr int kMaxCopyRanges = 64;
 
   std::vector<double> xw_;    ///< current coordinates, wrapped, D per particle
   std::vector<double> xref_;  ///< the same at the last search
   std::vector<std::uint8_t> wall_ref_;
   std::vector<std::uint32_t> cand_start_;  ///< N + 1
   std::vector<std::uint32_t> cand_split_;  ///< first wall target in row i
-  std::vector<std::uint32_t> cand_;        ///< candidate targets, rows as above
+  std::vector<std::uint32_t> cand_;        ///< candidate targets, rows as above, + kCandSlack zeros
   std::vector<std::vector<DiffusionGraph::Edge>> edge_scratch_;  ///< per thread > 0
   std::vector<std::vector<std::uint32_t>> cand_scratch_;         ///< per thread
   std::vector<std::uint32_t> wall_cell_;  ///< wall flags in cell order (search scratch)
