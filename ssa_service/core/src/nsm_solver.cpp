@@ -18,8 +18,14 @@ NsmSolver::NsmSolver(Model model, std::uint64_t seed)
     : state_(std::move(model)), rng_(seed, kStreamId), seed_(seed) {}
 
 bool NsmSolver::update_graph(const ParticleState& particles) {
+  // The queue of the previous graph (same voxels) keeps its pending draws.
+  const bool rescale = state_.has_graph() && queue_.size() == state_.voxel_count();
   if (!state_.update_graph(particles)) return false;
-  rebuild_queue();
+  if (rescale && queue_.size() == state_.voxel_count()) {
+    rescale_queue();
+  } else {
+    rebuild_queue();
+  }
   return true;
 }
 
@@ -30,11 +36,43 @@ void NsmSolver::set_counts(int species, std::span<const std::int64_t> counts) {
 
 void NsmSolver::rebuild_queue() {
   const std::size_t n = state_.voxel_count();
-  std::vector<double> times(n);
+  std::vector<double>& times = times_scratch_;
+  times.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double a = state_.total_rate(static_cast<std::uint32_t>(i));
     state_.cached_rate(static_cast<std::uint32_t>(i)) = a;
     times[i] = a > 0 ? time_ + detail::exponential(rng_) / a : kInf;
+  }
+  queue_.assign(times);
+}
+
+void NsmSolver::rescale_queue() {
+  // Gibson & Bruck 2000: given the history, tau - t of a voxel that has not fired is
+  // Exp(a_old); (a_old / a_new)(tau - t) is then Exp(a_new), so the pending draw is
+  // reused. The cached rates are still those of the old graph (RdmeState::update_graph
+  // keeps them); they equal total_rate() of the old graph and counts, also after a
+  // restore (which recomputes them), so a restored run rescales identically.
+  const std::size_t n = state_.voxel_count();
+  std::vector<double>& times = times_scratch_;
+  times.resize(n);
+  const double t = time_;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto v = static_cast<std::uint32_t>(i);
+    const double a_old = state_.cached_rate(v);
+    const double a_new = state_.total_rate(v);
+    state_.cached_rate(v) = a_new;
+    const double tau = queue_.time_of(v);
+    double ti = kInf;
+    if (a_new > 0) {
+      if (a_old == a_new) {
+        ti = tau;
+      } else if (a_old > 0 && tau < kInf) {
+        ti = t + (a_old / a_new) * (tau - t);
+      } else {
+        ti = t + detail::exponential(rng_) / a_new;  // idle before: a fresh draw
+      }
+    }
+    times[i] = ti;
   }
   queue_.assign(times);
 }

@@ -74,8 +74,8 @@ bool RdmeState::update_graph(const ParticleState& particles) {
   n_ = graph_.size();
   voxels_.resize(n_);
   for (std::size_t i = 0; i < n_; ++i) {
-    VoxelRecord& v = voxels_[i];
-    v.rate = 0;
+    VoxelRecord& v = voxels_[i];  // v.rate (the solver's cached rate) is kept: see
+                                  // NsmSolver::rescale_queue()
     v.sum_all = graph_.sum_all[i];
     v.begin = graph_.row_start[i];
     v.split = graph_.split[i];

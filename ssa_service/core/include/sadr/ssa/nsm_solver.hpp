@@ -11,8 +11,10 @@
 /// the voxel that fired and rescales the time of a jump target whose rate
 /// changed without firing (Gibson & Bruck 2000: tau' = t + (a/a')(tau - t)).
 /// The queue is a tournament tree over the times (EventTree).
-/// update_graph() rebuilds everything in O(N) with fresh draws (exact by
-/// memorylessness) and does nothing when the particles did not change.
+/// update_graph() rebuilds graph and rates in O(N) and rescales every pending time
+/// the same way (tau' = t + (a/a')(tau - t): no random numbers, exact by the same
+/// argument; a voxel idle before, a = 0, gets a fresh draw), and does nothing when
+/// the particles did not change.
 ///
 /// Random numbers: one Xoshiro256** stream, seeded from (seed, kStreamId)
 /// through rng::mix_seed; its state is part of every snapshot.
@@ -47,8 +49,9 @@ class NsmSolver {
 
   /// Rebuilds graph, rates and queue in O(N) when positions, densities, masses
   /// or kinds differ from the last call (validating the particles); otherwise
-  /// does nothing. The first call fixes the voxel count N (counts start at 0).
-  /// Wall reservoirs are re-imposed. @return true if rebuilt.
+  /// does nothing. Pending event times are rescaled to the new rates (Gibson-Bruck),
+  /// fresh draws only for voxels whose rate was 0. The first call fixes the voxel
+  /// count N (counts start at 0). Wall reservoirs are re-imposed. @return true if rebuilt.
   bool update_graph(const ParticleState& particles);
   /// Sets the copy numbers of `species` (N values >= 0); all rates recomputed
   /// and all next-event times redrawn (O(N)).
@@ -85,6 +88,9 @@ class NsmSolver {
  private:
   /// All rates from the counts, fresh exponential times from time_, queue rebuilt.
   void rebuild_queue();
+  /// All rates from the counts; each pending time rescaled from the cached (old)
+  /// rate to the new one, a fresh draw where the old rate was 0; queue rebuilt.
+  void rescale_queue();
 
   RdmeState state_;
   EventTree queue_;
@@ -92,6 +98,7 @@ class NsmSolver {
   std::uint64_t seed_;
   double time_ = 0;
   std::uint64_t events_ = 0;
+  std::vector<double> times_scratch_;  ///< rebuild/rescale: new times by voxel
 };
 
 }  // namespace sadr::ssa

@@ -53,8 +53,9 @@ class RdmeState {
 
   /// Rebuilds graph and reaction constants from `particles` unless positions,
   /// densities, masses and kinds equal the current ones. The first call sets
-  /// N and zero counts; later calls must keep N. A rebuild re-imposes reservoir counts.
-  /// @return true if the graph was rebuilt.
+  /// N and zero counts; later calls must keep N. A rebuild re-imposes reservoir counts
+  /// and keeps the cached rates (those of the old graph: the solver rescales its
+  /// pending times from them). @return true if the graph was rebuilt.
   bool update_graph(const ParticleState& particles);
 
   /// Sets X_s for all voxels (then re-imposes reservoirs); validates.
