@@ -19,6 +19,7 @@
 
 #include "graph_build_detail.hpp"  // private (ssa_service/core/src): the full-stencil path
 #include "graph_filter.hpp"
+#include "sadr/common/status.hpp"
 #include "sadr/ssa/neighbor_list.hpp"
 #include "sadr/ssa/nsm_solver.hpp"
 #include "ssa_test_support.hpp"
@@ -238,6 +239,35 @@ TEST(GraphBuilder, GraphDoesNotDependOnTheThreadCount) {
     }
     EXPECT_GE(b2.searches(), 2u);
   }
+}
+
+// The threaded rebuild validates inside its parallel region: a bad particle must
+// still throw the usual InvalidArgument there and leave graph and builder usable.
+TEST(GraphBuilder, InvalidParticleOnTheThreadedRebuildThrowsAndLeavesTheGraph) {
+  const double len = 40.0, h = 1.5;
+  Cloud c(2, 3100, len, 5);
+  const Model m = testing::diffusion_model(testing::make_box(2, len, true), h, 1.0);
+  GraphBuilder b;
+  b.set_threads(2);
+  DiffusionGraph g;
+  b.build(g, m, c.p);
+  c.move(0.002 * h, len);  // well inside the skin: no search
+  b.build(g, m, c.p);  // the candidate list is reused: the threaded path
+  const DiffusionGraph before = g;
+  const std::uint64_t searches = b.searches();
+  ParticleState bad = c.p;
+  bad.densities[2500] = -1.0;
+  try {
+    b.build(g, m, bad);
+    FAIL() << "no exception for a negative density";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("density = -1"), std::string::npos) << e.what();
+  }
+  expect_same_graph(g, before, "after the failed rebuild");
+  c.move(0.002 * h, len);  // well inside the skin: no search
+  b.build(g, m, c.p);
+  expect_same_graph(g, DiffusionGraph::build(m, c.p), "rebuild after the error");
+  EXPECT_EQ(b.searches(), searches);  // the candidate list survived
 }
 
 TEST(GraphBuilder, WeightsEqualTheFullStencilPathBitForBit) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 #include "cell_grid.hpp"
@@ -56,16 +57,57 @@ inline int omp_team_size() {
 
 void GraphBuilder::build(DiffusionGraph& g, const Model& model, const ParticleState& particles,
                          bool force_search) {
-  detail::validate_particles(model, particles);  // before anything is written
-  detail::prepare_vertices(g, particles);
-  ++builds_;
-  const bool moved_far = wrap_and_check(model, particles, g);  // also fills xw_
+  // Usual coupled step: a candidate list exists and the rows go to several threads.
+  // Validation, vertices and wrap then run on the first thread inside the filter's
+  // parallel region, while the others wake up (~40 us each with passive waits).
+  const int nt = valid_ && !force_search ? thread_count(particles.size()) : 1;
+  bool moved_far = false;
+  if (nt > 1) {
+    if (prepare_and_filter(g, model, particles, nt)) return;
+    moved_far = true;  // prepared, xw_ filled; a search is needed
+  } else {
+    detail::validate_particles(model, particles);  // before anything is written
+    detail::prepare_vertices(g, particles);
+    ++builds_;
+    moved_far = wrap_and_check(model, particles, g);  // also fills xw_
+  }
   if ((force_search || moved_far) && !search(model, particles, g)) {
     valid_ = false;
     detail::build_rows_full_stencil(g, model, particles);
     return;
   }
   filter(g, model, particles);
+}
+
+bool GraphBuilder::prepare_and_filter(DiffusionGraph& g, const Model& model, const ParticleState& p,
+                                      int nt) {
+  std::exception_ptr error;  // exceptions must not leave the parallel region
+  bool search_needed = false;
+  detail::FilterParams prm;
+  detail::FilterOutputs o;
+  edge_scratch_.resize(static_cast<std::size_t>(nt));
+  std::vector<std::uint32_t> counts(static_cast<std::size_t>(nt), 0);
+#pragma omp parallel num_threads(nt)
+  {
+#pragma omp master
+    {
+      try {
+        detail::validate_particles(model, p);  // before anything is written
+        detail::prepare_vertices(g, p);
+        ++builds_;
+        search_needed = wrap_and_check(model, p, g);
+        if (!search_needed) filter_setup(g, model, p, prm, o);
+      } catch (...) {
+        error = std::current_exception();
+      }
+    }
+#pragma omp barrier
+    if (!error && !search_needed) filter_team(g, prm, o, counts);
+  }
+  if (error) std::rethrow_exception(error);
+  if (search_needed) return false;
+  filter_finish(g, p.size(), counts);
+  return true;
 }
 
 bool GraphBuilder::wrap_and_check(const Model& model, const ParticleState& p,
@@ -160,11 +202,12 @@ bool GraphBuilder::search(const Model& model, const ParticleState& p, const Diff
   return true;
 }
 
-void GraphBuilder::filter(DiffusionGraph& g, const Model& model, const ParticleState& p) {
+void GraphBuilder::filter_setup(DiffusionGraph& g, const Model& model, const ParticleState& p,
+                                detail::FilterParams& prm, detail::FilterOutputs& o) {
   const std::size_t n = p.size();
   const int d = model.box.dimension;
   const double h = model.smoothing_length;
-  detail::FilterParams prm;
+  prm = detail::FilterParams{};
   prm.dim = d;
   prm.x = xw_.data();
   // Walled axes: len 0 and half +inf, so the branch-free minimum image is the
@@ -185,65 +228,80 @@ void GraphBuilder::filter(DiffusionGraph& g, const Model& model, const ParticleS
   prm.cand_start = cand_start_.data();
   prm.cand_split = cand_split_.data();
   prm.cand = cand_.data();
-  const detail::FilterOutputs o{g.row_start.data(), g.split.data(), g.sum_nowall.data(),
-                                g.sum_all.data(), g.wall_distance.data()};
+  o = detail::FilterOutputs{g.row_start.data(), g.split.data(), g.sum_nowall.data(),
+                            g.sum_all.data(), g.wall_distance.data()};
   // Upper bound first (no reallocation once the candidate count stopped growing;
   // shrinking afterwards does not free), then trimmed to the edges kept.
   if (g.edges.size() < cand_start_[n] + detail::kFilterSlack) {
     g.edges.resize(cand_start_[n] + detail::kFilterSlack);
   }
+}
+
+void GraphBuilder::filter(DiffusionGraph& g, const Model& model, const ParticleState& p) {
+  const std::size_t n = p.size();
+  detail::FilterParams prm;
+  detail::FilterOutputs o;
+  filter_setup(g, model, p, prm, o);
   const int nt = thread_count(n);
-  std::uint32_t out = 0;
+  std::vector<std::uint32_t> counts(static_cast<std::size_t>(nt), 0);  // 0 past the team
   if (nt == 1) {
-    out = detail::filter_rows(prm, 0, n, g.edges.data(), o, simd_);
+    counts[0] = detail::filter_rows(prm, 0, n, g.edges.data(), o, simd_);
   } else {
-    // Rows split into nt ranges of about equal candidate counts. Range 0 writes
-    // its edges in place; the others into scratch, copied behind it once every
-    // count is known, by all threads (equal slices of the edges to move: one
-    // thread copying 1.6 MB at 1e4 particles in 2D was a serial tail of ~0.1 ms).
-    // Each row is computed the same way whatever the split, so the graph does
-    // not depend on the thread count.
     edge_scratch_.resize(static_cast<std::size_t>(nt));
-    std::vector<std::uint32_t> counts(static_cast<std::size_t>(nt), 0);  // 0 past the team
 #pragma omp parallel num_threads(nt)
-    {
-      const int t = omp_thread_id(), team = omp_team_size();
-      const std::size_t r0 = row_split(t, team), r1 = row_split(t + 1, team);
-      DiffusionGraph::Edge* dst = g.edges.data();
-      if (t > 0) {
-        std::vector<DiffusionGraph::Edge>& s = edge_scratch_[t];
-        const std::size_t need = cand_start_[r1] - cand_start_[r0] + detail::kFilterSlack;
-        if (s.size() < need) s.resize(need);
-        dst = s.data();
-      }
-      counts[t] = detail::filter_rows(prm, r0, r1, dst, o, simd_);
-#pragma omp barrier
-      // Destination offsets of the ranges; edges [counts[0], total) are moved in
-      // `team` slices, each thread copying the parts of the ranges in its slice.
-      std::uint32_t base[kMaxCopyRanges + 1] = {0};
-      const int ranges = std::min(team, kMaxCopyRanges);
-      for (int k = 0; k < ranges; ++k) base[k + 1] = base[k] + counts[k];
-      const std::uint32_t total = base[ranges];
-      const std::uint32_t lo = counts[0] + static_cast<std::uint32_t>(
-                                               std::uint64_t{total - counts[0]} * t / team),
-                          hi = counts[0] + static_cast<std::uint32_t>(
-                                               std::uint64_t{total - counts[0]} * (t + 1) / team);
-      for (int k = 1; k < ranges; ++k) {
-        const std::uint32_t b = std::max(lo, base[k]), e = std::min(hi, base[k + 1]);
-        if (b < e) {
-          const DiffusionGraph::Edge* src = edge_scratch_[k].data() + (b - base[k]);
-          std::copy(src, src + (e - b), g.edges.data() + b);
-        }
-      }
-      if (t > 0) {
-        for (std::size_t i = r0; i < r1; ++i) {
-          g.row_start[i] += base[t];
-          g.split[i] += base[t];
-        }
-      }
-    }
-    for (int k = 0; k < nt; ++k) out += counts[k];
+    filter_team(g, prm, o, counts);
   }
+  filter_finish(g, n, counts);
+}
+
+void GraphBuilder::filter_team(DiffusionGraph& g, const detail::FilterParams& prm,
+                               const detail::FilterOutputs& o, std::vector<std::uint32_t>& counts) {
+  // Rows split into ranges of about equal candidate counts, one per thread of the
+  // team. Range 0 writes its edges in place; the others into scratch, copied behind
+  // it once every count is known, by all threads (equal slices of the edges to
+  // move: one thread copying 1.6 MB at 1e4 particles in 2D was a serial tail of
+  // ~0.1 ms). Each row is computed the same way whatever the split, so the graph
+  // does not depend on the thread count.
+  const int t = omp_thread_id(), team = omp_team_size();
+  const std::size_t r0 = row_split(t, team), r1 = row_split(t + 1, team);
+  DiffusionGraph::Edge* dst = g.edges.data();
+  if (t > 0) {
+    std::vector<DiffusionGraph::Edge>& s = edge_scratch_[t];
+    const std::size_t need = cand_start_[r1] - cand_start_[r0] + detail::kFilterSlack;
+    if (s.size() < need) s.resize(need);
+    dst = s.data();
+  }
+  counts[t] = detail::filter_rows(prm, r0, r1, dst, o, simd_);
+#pragma omp barrier
+  // Destination offsets of the ranges; edges [counts[0], total) are moved in
+  // `team` slices, each thread copying the parts of the ranges in its slice.
+  std::uint32_t base[kMaxCopyRanges + 1] = {0};
+  const int ranges = std::min(team, kMaxCopyRanges);
+  for (int k = 0; k < ranges; ++k) base[k + 1] = base[k] + counts[k];
+  const std::uint32_t total = base[ranges];
+  const std::uint32_t lo =
+      counts[0] + static_cast<std::uint32_t>(std::uint64_t{total - counts[0]} * t / team);
+  const std::uint32_t hi =
+      counts[0] + static_cast<std::uint32_t>(std::uint64_t{total - counts[0]} * (t + 1) / team);
+  for (int k = 1; k < ranges; ++k) {
+    const std::uint32_t b = std::max(lo, base[k]), e = std::min(hi, base[k + 1]);
+    if (b < e) {
+      const DiffusionGraph::Edge* src = edge_scratch_[k].data() + (b - base[k]);
+      std::copy(src, src + (e - b), g.edges.data() + b);
+    }
+  }
+  if (t > 0) {
+    for (std::size_t i = r0; i < r1; ++i) {
+      g.row_start[i] += base[t];
+      g.split[i] += base[t];
+    }
+  }
+}
+
+void GraphBuilder::filter_finish(DiffusionGraph& g, std::size_t n,
+                                 const std::vector<std::uint32_t>& counts) {
+  std::uint32_t out = 0;
+  for (const std::uint32_t c : counts) out += c;
   g.row_start[n] = out;
   g.edges.resize(out);
 }

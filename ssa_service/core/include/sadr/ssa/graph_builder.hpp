@@ -33,6 +33,11 @@
 
 namespace sadr::ssa {
 
+namespace detail {
+struct FilterParams;
+struct FilterOutputs;
+}  // namespace detail
+
 class GraphBuilder {
  public:
   /// Skin as a fraction of h. 0.1: 34.2 candidates for 26.7 edges per particle in
@@ -72,6 +77,18 @@ class GraphBuilder {
   bool search(const Model& model, const ParticleState& p, const DiffusionGraph& g);
   /// The rows of g from the candidate list (rows in parallel ranges).
   void filter(DiffusionGraph& g, const Model& model, const ParticleState& p);
+  /// Validation, vertices and wrap on the first of `nt` threads, then the filter on
+  /// all of them, in one parallel region; false (nothing filtered) if a search is needed.
+  bool prepare_and_filter(DiffusionGraph& g, const Model& model, const ParticleState& p, int nt);
+  /// Filter inputs and outputs for g and p; sizes g.edges to the candidate bound.
+  void filter_setup(DiffusionGraph& g, const Model& model, const ParticleState& p,
+                    detail::FilterParams& prm, detail::FilterOutputs& o);
+  /// One thread's share of the filter inside a parallel region (all threads call it).
+  void filter_team(DiffusionGraph& g, const detail::FilterParams& prm,
+                   const detail::FilterOutputs& o, std::vector<std::uint32_t>& counts);
+  /// Total edge count from the per-range counts; trims g.edges.
+  static void filter_finish(DiffusionGraph& g, std::size_t n,
+                            const std::vector<std::uint32_t>& counts);
   /// Threads for a loop over `rows` rows (1 below kMinRowsPerThread per thread).
   [[nodiscard]] int thread_count(std::size_t rows) const;
   /// First row of range t of nt (ranges of about equal candidate counts).
