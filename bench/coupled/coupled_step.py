@@ -13,11 +13,21 @@ jump per molecule per coupling step; tau = 0.05, which the SDPD acoustic limit
 Timings come from run.json: `fluid_compute` (backend advance inside the
 service), `ssa_graph` and `ssa_nsm` (inside ssa_service); transfer = the rest
 of the fluid and SSA call times plus the state read (`transfer`).
+
+Overlap (--compare-overlap P): P interleaved pairs per size and mode, the
+sequential loop (--no-overlap) then the overlapped one (--overlap: SSA step k
+on a worker thread while the fluid computes step k+1). Per loop: wall ms per
+coupling step (run.json `coupling_loop` / steps, frames and checkpoints
+included) and the exposed SSA + transfer share = `ssa_wait` / `coupling_loop`
+(`ssa_wait`: time the main thread spent on SSA stages outside a fluid call,
+i.e. the SSA time the overlap did not hide; sequential: the whole SSA stage).
+The breakdown table then uses the sequential run with the smallest wall time.
 Usage: coupled_step.py [--sadr build/release/bin/sadr] [--sizes 10000 100000] [--steps 20]
                        [--modes embedded processes] [--extra="--no-shared-memory"]
+                       [--compare-overlap 3] [--extra="--fluid-threads 1 --ssa-threads 1"]
 Writes bench/results/coupled_step.json and .md.
 """
-import argparse, json, math, os, subprocess, sys, tempfile
+import argparse, hashlib, json, math, os, statistics, subprocess, sys, tempfile
 
 SCENE = """name: coupled_bench_{n}
 dimension: 2
@@ -48,6 +58,8 @@ def main():
     ap.add_argument("--modes", nargs="+", default=["embedded", "processes"],
                     choices=["embedded", "processes"])
     ap.add_argument("--extra", default="", help="more sadr run options, e.g. --no-shared-memory")
+    ap.add_argument("--compare-overlap", type=int, default=0, metavar="P",
+                    help="P interleaved pairs --no-overlap / --overlap per size and mode")
     a = ap.parse_args()
     tau = 0.05  # two SDPD sub-steps: acoustic limit 0.25 (h/2) / c0 = 0.0375
     kappa = 1.0 / (4 * tau)  # 2D: per-molecule jump rate ~ 4 kappa / dx^2 -> ~1 jump per step
@@ -59,13 +71,44 @@ def main():
             scene = os.path.join(work, "scene.yaml")
             with open(scene, "w") as f:
                 f.write(SCENE.format(n=L * L, L=float(L), kappa=kappa, tau=tau, end=tau * a.steps))
-            cmd = [a.sadr, "run", scene, "-q", "-o", os.path.join(work, "out")]
-            if mode == "embedded":
-                cmd.append("--embedded")
-            cmd += a.extra.split()
-            subprocess.run(cmd, check=True)
-            with open(os.path.join(work, "out", "run.json")) as f:
-                t = json.load(f)["timings_s"]
+            def run(loop_flags):
+                cmd = [a.sadr, "run", scene, "-q", "-o", os.path.join(work, "out"), "--force"]
+                if mode == "embedded":
+                    cmd.append("--embedded")
+                cmd += a.extra.split() + loop_flags
+                subprocess.run(cmd, check=True, stderr=subprocess.DEVNULL)
+                with open(os.path.join(work, "out", "run.json")) as f:
+                    j = json.load(f)
+                frames = sorted(os.listdir(os.path.join(work, "out", "frames")))
+                with open(os.path.join(work, "out", "frames", frames[-1]), "rb") as f:
+                    digests.add(hashlib.sha256(f.read()).hexdigest())
+                return j["timings_s"], j.get("overlapped_steps", 0)
+
+            digests = set()  # of the last frame: every run must give the same bytes
+
+            overlap = None
+            if a.compare_overlap > 0:
+                runs = {"sequential": [], "overlapped": []}
+                for _ in range(a.compare_overlap):  # interleaved: seq, ovl, seq, ovl, ...
+                    runs["sequential"].append(run(["--no-overlap"]))
+                    runs["overlapped"].append(run(["--overlap"]))
+                overlap = {}
+                for loop, rs in runs.items():
+                    walls = [1e3 * t.get("coupling_loop", 0.0) / a.steps for t, _ in rs]
+                    shares = [t.get("ssa_wait", 0.0) / t["coupling_loop"] for t, _ in rs]
+                    overlap[loop] = {"wall_ms_per_step": walls, "wall_min": min(walls),
+                                     "wall_median": statistics.median(walls),
+                                     "exposed_ssa_transfer_share": shares,
+                                     "exposed_share_median": statistics.median(shares),
+                                     "overlapped_steps": rs[0][1]}
+                overlap["identical_frames"] = len(digests) == 1
+                if len(digests) != 1:
+                    print(f"WARNING: N={L*L} {mode}: the runs' last frames differ ({len(digests)} versions)",
+                          file=sys.stderr, flush=True)
+                best = min(runs["sequential"], key=lambda r: r[0].get("coupling_loop", 0.0))
+                t = best[0]
+            else:
+                t, _ = run([])
             steps = a.steps
             fluid = t.get("fluid_compute", 0.0)
             graph = t.get("ssa_graph", 0.0)
@@ -76,11 +119,20 @@ def main():
                    "ms_per_step": {k: 1e3 * v / steps for k, v in
                                    {"fluid": fluid, "transfer": transfer, "graph_rebuild": graph, "nsm": nsm, "total": total}.items()},
                    "transfer_plus_rebuild_share": (transfer + graph) / total}
+            if overlap:
+                row["overlap"] = overlap
             rows.append(row)
             m = row["ms_per_step"]
             print(f"N={L*L:7d} {mode:9s}  fluid {m['fluid']:8.2f}  transfer {m['transfer']:7.2f}  rebuild {m['graph_rebuild']:7.2f}"
                   f"  nsm {m['nsm']:7.2f}  total {m['total']:8.2f} ms/step   transfer+rebuild = {100*row['transfer_plus_rebuild_share']:.1f}%"
                   f"  (target: embedded <= 5%, processes <= 15% at 1e4)", flush=True)
+            if overlap:
+                for loop, o in overlap.items():
+                    if loop == "identical_frames":
+                        continue
+                    print(f"    {loop:10s} wall ms/step min {o['wall_min']:8.2f} median {o['wall_median']:8.2f}"
+                          f"  exposed ssa+transfer {100*o['exposed_share_median']:.1f}%"
+                          f"  (overlapped steps {o['overlapped_steps']})", flush=True)
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, "coupled_step.json"), "w") as f:
         json.dump({"command": " ".join(sys.argv), "cores": os.cpu_count(), "rows": rows}, f, indent=2)
@@ -91,6 +143,18 @@ def main():
             m = r["ms_per_step"]
             f.write(f"| {r['particles']} | {r['mode']} | {m['fluid']:.2f} | {m['transfer']:.2f} | {m['graph_rebuild']:.2f} | {m['nsm']:.2f} | {m['total']:.2f} | {100*r['transfer_plus_rebuild_share']:.1f}% |\n")
         f.write("\nTargets (issue 5): transfer + rebuild <= 5% of the step embedded, <= 15% with processes, at 1e4 particles.\n")
+        if any("overlap" in r for r in rows):
+            f.write("\n## Sequential vs overlapped loop (interleaved pairs)\n\n"
+                    "Wall ms per coupling step = run.json coupling_loop / steps; exposed = ssa_wait / coupling_loop "
+                    "(SSA + transfer time not hidden behind the fluid).\n\n"
+                    "| particles | mode | loop | wall ms/step min | median | runs | exposed SSA+transfer (median) |\n"
+                    "|---|---|---|---|---|---|---|\n")
+            for r in rows:
+                for loop, o in r.get("overlap", {}).items():
+                    if loop == "identical_frames":
+                        continue
+                    f.write(f"| {r['particles']} | {r['mode']} | {loop} | {o['wall_min']:.2f} | {o['wall_median']:.2f} | "
+                            f"{', '.join(f'{w:.2f}' for w in o['wall_ms_per_step'])} | {100*o['exposed_share_median']:.1f}% |\n")
 
 
 if __name__ == "__main__":

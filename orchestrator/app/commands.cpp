@@ -44,6 +44,25 @@ void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
   for (const auto& line : plan.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
 }
 
+/// OpenMP threads the fluid will use: --fluid-threads, else OMP_NUM_THREADS (its
+/// first value), else every hardware thread (OpenMP's default).
+int fluid_threads(const CliOptions& o, unsigned hardware_threads) {
+  if (o.fluid_threads > 0) return o.fluid_threads;
+  if (const char* v = std::getenv("SADR_FLUID_THREADS"); v && std::atoi(v) > 0) return std::atoi(v);
+  if (const char* v = std::getenv("OMP_NUM_THREADS"); v && std::atoi(v) > 0) return std::atoi(v);
+  return static_cast<int>(hardware_threads);
+}
+
+/// Per-service thread counts for the services launched here (child processes
+/// inherit the environment; embedded handlers read it in this process), then
+/// the overlap decision of the plan.
+void configure_threads_and_overlap(Plan& plan, const CliOptions& o, int jobs) {
+  if (o.fluid_threads > 0) setenv("SADR_FLUID_THREADS", std::to_string(o.fluid_threads).c_str(), 1);
+  if (o.ssa_threads > 0) setenv("SADR_SSA_THREADS", std::to_string(o.ssa_threads).c_str(), 1);
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  decide_overlap(plan, o.overlap, hw, fluid_threads(o, hw), jobs);
+}
+
 fs::path default_output(const Scene& scene) {
   if (!scene.output.directory.empty()) return scene.output.directory;  // relative to the cwd
   std::string stamp = utc_now_iso8601();  // 2026-11-22T03:00:00Z -> 20261122-030000
@@ -129,7 +148,9 @@ int report_failure(const std::exception& e) {
 int cmd_validate(const CliOptions& o) {
   try {
     const Scene scene = load_scene(o.scene);
-    const Plan plan = make_plan(scene);
+    Plan plan = make_plan(scene);
+    const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+    decide_overlap(plan, o.overlap, hw, fluid_threads(o, hw), 1);
     print_plan(scene, plan, o);
     std::printf("%s: valid\n", o.scene.c_str());
     return kExitOk;
@@ -142,7 +163,14 @@ int cmd_validate(const CliOptions& o) {
 int cmd_run(const CliOptions& o) {
   install_signal_handlers();
   const Scene scene = load_scene(o.scene);
-  const Plan plan = make_plan(scene);
+  Plan plan = make_plan(scene);
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const int r_count = std::max(1, o.realizations);
+  const int jobs = o.realization.empty() && r_count > 1
+                       ? std::min(r_count, o.jobs > 0 ? o.jobs : static_cast<int>(cores))
+                       : 1;
+  if (jobs > 1) setenv("OMP_NUM_THREADS", "1", 0);  // one core per realization
+  configure_threads_and_overlap(plan, o, jobs);
   print_plan(scene, plan, o);
   if (!o.realization.empty() && o.output.empty()) {
     throw InvalidArgument("--realization needs --output DIR (the folder shared by all tasks)");
@@ -181,7 +209,6 @@ int cmd_run(const CliOptions& o) {
     const RunResult res = run_realization(scene, plan, o, r, out / name, nullptr, base);
     return res.interrupted && g_interrupt ? kExitInterrupted : kExitOk;
   }
-  const int r_count = std::max(1, o.realizations);
   if (r_count == 1) {
     RunOptions base;
     base.progress = !o.quiet;
@@ -195,9 +222,6 @@ int cmd_run(const CliOptions& o) {
   }
 
   // Ensemble: R realizations on `jobs` workers, each with its own services.
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const int jobs = std::min(r_count, o.jobs > 0 ? o.jobs : static_cast<int>(cores));
-  if (jobs > 1) setenv("OMP_NUM_THREADS", "1", 0);  // one core per realization
   std::vector<std::string> species = scene.output.species;
   EnsembleAccumulator ensemble(species, scene.particles.size());
   // Realizations finish in any order; they are added in index order (a
@@ -270,7 +294,8 @@ int cmd_resume(const CliOptions& o) {
                           ", but that file now has hash " + scene.source_hash +
                           " (the scene changed since the run started)");
   }
-  const Plan plan = make_plan(scene);
+  Plan plan = make_plan(scene);
+  configure_threads_and_overlap(plan, o, 1);
   print_plan(scene, plan, o);
   fs::path manifest_path = o.checkpoint;
   if (fs::is_directory(manifest_path)) manifest_path /= std::string(kCheckpointManifestName);

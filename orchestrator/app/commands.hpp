@@ -37,6 +37,10 @@ struct CliOptions {
   double timeout_s = 120;  ///< per service call
   double stop_at = -1;     ///< checkpoint and stop at this simulated time (< 0: never)
   bool quiet = false;      ///< no progress display
+  /// --overlap / --no-overlap: SSA step k at the same time as fluid step k + 1.
+  OverlapRequest overlap = OverlapRequest::kAuto;
+  int fluid_threads = 0;  ///< --fluid-threads (0 = OpenMP's default); SADR_FLUID_THREADS
+  int ssa_threads = 0;    ///< --ssa-threads (0 = OpenMP's default); SADR_SSA_THREADS
   /// Run only this realization (a cluster array task); "" = all. "env" takes
   /// the index from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX.
   std::string realization;

@@ -55,6 +55,23 @@ int main(int argc, char** argv) {
     cmd->add_option("-o,--output", o.output,
                     "output directory (default: output.directory of the scene, else "
                     "runs/<name>-<UTC time>)");
+    auto* overlap_on = cmd->add_flag_callback(
+        "--overlap", [&] { o.overlap = OverlapRequest::kOn; },
+        "run the SSA stage of coupling step k while the fluid computes step k+1 even "
+        "without a spare core (default: only when each realization has a core to spare "
+        "for the SSA: hardware threads >= fluid threads + 1; see docs/cli.md)");
+    auto* overlap_off = cmd->add_flag_callback(
+        "--no-overlap", [&] { o.overlap = OverlapRequest::kOff; },
+        "always run the fluid and SSA stages one after the other");
+    overlap_on->excludes(overlap_off);
+    cmd->add_option("--fluid-threads", o.fluid_threads,
+                    "OpenMP threads of fluid_service (default: OMP_NUM_THREADS, else all "
+                    "cores); sets SADR_FLUID_THREADS for the services launched here")
+        ->check(CLI::Range(1, 4096));
+    cmd->add_option("--ssa-threads", o.ssa_threads,
+                    "OpenMP threads of ssa_service's graph rebuild (default: OMP_NUM_THREADS, "
+                    "else all cores); sets SADR_SSA_THREADS for the services launched here")
+        ->check(CLI::Range(1, 4096));
     cmd->add_flag("-q,--quiet", o.quiet, "no progress display");
     cmd->add_option("--log-level", level, "error|warn|info|debug")
         ->check(CLI::IsMember({"error", "warn", "info", "debug"}));

@@ -89,6 +89,7 @@ ServiceSet::~ServiceSet() {
 }
 
 void ServiceSet::check_alive() {
+  std::lock_guard lock(alive_mutex_);
   for (auto& p : processes_) {
     if (!p->alive()) {
       throw Error(StatusCode::kUnavailable,

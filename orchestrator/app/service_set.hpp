@@ -9,6 +9,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -35,6 +36,7 @@ class ServiceSet {
 
   [[nodiscard]] const ServiceEndpoints& endpoints() const { return endpoints_; }
   /// Throws sadr::Error(kUnavailable) naming a child process that has exited.
+  /// Thread-safe (the overlapped loop waits for both services at once).
   void check_alive();
   /// Asks the services to shut down (processes: then waits / terminates).
   void stop();
@@ -48,6 +50,7 @@ class ServiceSet {
   std::vector<std::thread> threads_;
   std::atomic<bool> stop_threads_{false};
   std::vector<std::string> ipc_files_;
+  std::mutex alive_mutex_;  ///< check_alive() from the main thread and the SSA worker
 };
 
 }  // namespace sadr::orchestrator

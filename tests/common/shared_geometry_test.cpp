@@ -74,6 +74,64 @@ TEST(SharedGeometry, StaleGenerationAndChangedCountAreRefused) {
   EXPECT_THROW(peer.write(sample(11, 0.0), 0.0), InvalidArgument);           // over capacity
 }
 
+// The double buffer (orchestrator overlap: the fluid writes generation g + 1
+// while the SSA may still read generation g).
+TEST(SharedGeometry, PreviousGenerationStaysReadableAfterTheNextWrite) {
+  SharedGeometry owner = SharedGeometry::create(64);
+  SharedGeometry writer = SharedGeometry::open(owner.name(), "test.writer");
+  SharedGeometry reader = SharedGeometry::open(owner.name(), "test.reader");
+  const ParticleState previous = sample(50, 0.0);
+  const ParticleState p1 = sample(50, 0.25), p2 = sample(50, 0.5), p3 = sample(50, 0.75);
+  const std::uint64_t g1 = writer.write(p1, 0.1);
+  const std::uint64_t g2 = writer.write(p2, 0.2);
+  EXPECT_EQ(g1, 1u);
+  EXPECT_EQ(g2, 2u);
+  ParticleState out;
+  reader.read(g1, previous, out, "test.read");  // written before g2: still intact
+  EXPECT_EQ(std::memcmp(out.positions.data(), p1.positions.data(), 8 * 3 * 50), 0);
+  EXPECT_EQ(std::memcmp(out.densities.data(), p1.densities.data(), 8 * 50), 0);
+  EXPECT_EQ(std::memcmp(out.masses.data(), p1.masses.data(), 8 * 50), 0);
+  reader.read(g2, previous, out, "test.read");
+  EXPECT_EQ(std::memcmp(out.positions.data(), p2.positions.data(), 8 * 3 * 50), 0);
+  // g3 reuses g1's slot: g1 is gone and must fail loudly, g2 and g3 read.
+  const std::uint64_t g3 = writer.write(p3, 0.3);
+  EXPECT_EQ(g3, 3u);
+  try {
+    reader.read(g1, previous, out, "advance.geometry_shm");
+    FAIL() << "an overwritten generation was accepted";
+  } catch (const InvalidArgument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("advance.geometry_shm"), std::string::npos) << what;
+    EXPECT_NE(what.find("holds generation 3"), std::string::npos) << what;
+  }
+  reader.read(g2, previous, out, "test.read");
+  EXPECT_EQ(std::memcmp(out.positions.data(), p2.positions.data(), 8 * 3 * 50), 0);
+  reader.read(g3, previous, out, "test.read");
+  EXPECT_EQ(std::memcmp(out.positions.data(), p3.positions.data(), 8 * 3 * 50), 0);
+  // A generation not written yet, and generation 0, are refused too.
+  EXPECT_THROW(reader.read(g3 + 1, previous, out, "x"), InvalidArgument);
+  EXPECT_THROW(reader.read(0, previous, out, "x"), InvalidArgument);
+}
+
+TEST(SharedGeometry, TheTwoSlotsDoNotOverlap) {
+  // Capacity-sized writes: the last particle of one slot must not clobber the
+  // first of the other (a layout error would show as mixed data).
+  SharedGeometry owner = SharedGeometry::create(33);
+  SharedGeometry peer = SharedGeometry::open(owner.name(), "test");
+  const ParticleState previous = sample(33, 0.0);
+  const ParticleState a = sample(33, 1.0), b = sample(33, -1.0);
+  const std::uint64_t ga = peer.write(a, 0.0);
+  const std::uint64_t gb = peer.write(b, 0.0);
+  ParticleState out;
+  owner.read(ga, previous, out, "test");
+  EXPECT_EQ(std::memcmp(out.positions.data(), a.positions.data(), 8 * 3 * 33), 0);
+  EXPECT_EQ(std::memcmp(out.densities.data(), a.densities.data(), 8 * 33), 0);
+  EXPECT_EQ(std::memcmp(out.masses.data(), a.masses.data(), 8 * 33), 0);
+  owner.read(gb, previous, out, "test");
+  EXPECT_EQ(std::memcmp(out.positions.data(), b.positions.data(), 8 * 3 * 33), 0);
+  EXPECT_EQ(std::memcmp(out.masses.data(), b.masses.data(), 8 * 33), 0);
+}
+
 TEST(SharedGeometry, BadNamesAndMissingSegmentsNameTheField) {
   for (const std::string name : {"", "/etc-passwd", "/sadr-a/b", "sadr-x"}) {
     EXPECT_THROW(SharedGeometry::open(name, "advance.geometry_shm"), InvalidArgument) << name;

@@ -152,5 +152,56 @@ TEST(Plan, TextAndJsonForms) {
   EXPECT_EQ(j.at("skipped").size(), p.skipped.size());
 }
 
+TEST(Plan, OverlapNeedsLieBothServicesNoBackTransferAndASpareCore) {
+  Plan p = make_plan(moving_scene());
+  ASSERT_TRUE(p.overlap_allowed);
+  EXPECT_FALSE(p.overlap);  // off until decided
+  decide_overlap(p, OverlapRequest::kAuto, 8, 7, 1);
+  EXPECT_TRUE(p.overlap) << p.overlap_reason;
+  EXPECT_NE(p.overlap_reason.find("auto: a second hardware thread"), std::string::npos)
+      << p.overlap_reason;
+  decide_overlap(p, OverlapRequest::kAuto, 2, 2, 1);  // the fluid's team uses both: still on
+  EXPECT_TRUE(p.overlap) << p.overlap_reason;
+  decide_overlap(p, OverlapRequest::kAuto, 1, 1, 1);
+  EXPECT_FALSE(p.overlap);
+  EXPECT_NE(p.overlap_reason.find("auto: no second hardware thread"), std::string::npos)
+      << p.overlap_reason;
+  decide_overlap(p, OverlapRequest::kAuto, 2, 1, 2);  // two realizations share the 2 cores
+  EXPECT_FALSE(p.overlap);
+  decide_overlap(p, OverlapRequest::kAuto, 8, 1, 4);
+  EXPECT_TRUE(p.overlap);
+  decide_overlap(p, OverlapRequest::kOn, 1, 1, 1);
+  EXPECT_TRUE(p.overlap);
+  EXPECT_EQ(p.overlap_reason, "--overlap");
+  decide_overlap(p, OverlapRequest::kOff, 64, 1, 1);
+  EXPECT_FALSE(p.overlap);
+  EXPECT_EQ(p.overlap_reason, "--no-overlap");
+  EXPECT_TRUE(mentions(p.lines(), "overlap ssa step k || fluid step k+1: off (--no-overlap)"));
+  EXPECT_EQ(p.to_json().at("overlap"), false);
+  EXPECT_EQ(p.to_json().at("overlap_reason"), "--no-overlap");
+
+  Scene strang = moving_scene();
+  strang.time.splitting = Splitting::kStrang;
+  Plan ps = make_plan(strang);
+  decide_overlap(ps, OverlapRequest::kOn, 64, 1, 1);
+  EXPECT_FALSE(ps.overlap);  // even when asked for
+  EXPECT_NE(ps.overlap_reason.find("strang"), std::string::npos) << ps.overlap_reason;
+
+  Scene fed_back = moving_scene();
+  fed_back.fluid.boussinesq = Boussinesq{"A", 1.0, 0.0, {0, 1, 0}};
+  Plan pb = make_plan(fed_back);
+  ASSERT_TRUE(pb.back_transfer);
+  decide_overlap(pb, OverlapRequest::kOn, 64, 1, 1);
+  EXPECT_FALSE(pb.overlap);
+  EXPECT_NE(pb.overlap_reason.find("back-transfer"), std::string::npos) << pb.overlap_reason;
+
+  Scene no_ssa = moving_scene();
+  no_ssa.species.clear();
+  Plan pn = make_plan(no_ssa);
+  decide_overlap(pn, OverlapRequest::kOn, 64, 1, 1);
+  EXPECT_FALSE(pn.overlap);
+  EXPECT_EQ(pn.overlap_reason, "only one operator runs");
+}
+
 }  // namespace
 }  // namespace sadr::orchestrator

@@ -19,22 +19,33 @@ namespace sadr::wire {
 struct SharedGeometry::Header {
   char magic[8];              ///< "SADRGEO"
   std::uint32_t version;      ///< kVersion
-  std::uint32_t dimension;    ///< of the last write
-  std::uint64_t capacity;     ///< particles the segment holds
-  std::uint64_t count;        ///< particles of the last write
-  std::uint64_t generation;   ///< 0 = never written
-  double time;                ///< simulated time of the last write
-  std::uint64_t reserved[2];  ///< pads the header to 64 bytes
+  std::uint32_t reserved0;    ///< 0
+  std::uint64_t capacity;     ///< particles one slot holds
+  std::uint64_t latest;       ///< last generation written (0 = never written)
+  std::uint64_t reserved[4];  ///< pads the header to 64 bytes
+};
+
+/// One slot of the double buffer: generation g lives in slot g % 2.
+struct SharedGeometry::Slot {
+  std::uint64_t generation;  ///< held by the slot; 0 = never written or being written
+  std::uint64_t count;       ///< particles of that write
+  std::uint32_t dimension;   ///< of that write
+  std::uint32_t reserved;    ///< 0
+  double time;               ///< simulated time of that write
 };
 
 namespace {
 
 constexpr char kMagic[8] = {'S', 'A', 'D', 'R', 'G', 'E', 'O', '\0'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: two slots (double buffer)
 constexpr std::size_t kHeaderBytes = 64;
+constexpr std::size_t kSlotHeaderBytes = 32;
+constexpr std::size_t kSlots = 2;
+constexpr std::size_t kMetaBytes = kHeaderBytes + kSlots * kSlotHeaderBytes;
 
 std::size_t bytes_for(std::size_t capacity) {
-  return kHeaderBytes + 5 * capacity * sizeof(double);  // 3N positions, N densities, N masses
+  // per slot: 3N positions, N densities, N masses
+  return kMetaBytes + kSlots * 5 * capacity * sizeof(double);
 }
 
 std::string system_error(const std::string& what, const std::string& name) {
@@ -45,6 +56,7 @@ std::string system_error(const std::string& what, const std::string& name) {
 
 SharedGeometry SharedGeometry::create(std::size_t capacity) {
   static_assert(sizeof(Header) == kHeaderBytes);
+  static_assert(sizeof(Slot) == kSlotHeaderBytes);
   static std::atomic<unsigned> counter{0};
   SharedGeometry g;
   g.name_ = "/sadr-geometry-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
@@ -66,7 +78,7 @@ SharedGeometry SharedGeometry::create(std::size_t capacity) {
   if (p == MAP_FAILED) throw Error(StatusCode::kInternal, system_error("mmap", g.name_));
   g.base_ = p;
   Header* h = g.header();
-  std::memset(h, 0, kHeaderBytes);
+  std::memset(h, 0, kMetaBytes);
   std::memcpy(h->magic, kMagic, sizeof kMagic);
   h->version = kVersion;
   h->capacity = capacity;
@@ -88,7 +100,7 @@ SharedGeometry SharedGeometry::open(const std::string& name, std::string_view wh
                "; the geometry segment only works for services on the orchestrator's host)");
   }
   struct stat st {};
-  if (::fstat(fd, &st) != 0 || static_cast<std::size_t>(st.st_size) < kHeaderBytes) {
+  if (::fstat(fd, &st) != 0 || static_cast<std::size_t>(st.st_size) < kMetaBytes) {
     ::close(fd);
     throw fail("segment too small for its header");
   }
@@ -103,7 +115,7 @@ SharedGeometry SharedGeometry::open(const std::string& name, std::string_view wh
   if (std::memcmp(h->magic, kMagic, sizeof kMagic) != 0 || h->version != kVersion) {
     throw fail("not a sadr geometry segment of version " + std::to_string(kVersion));
   }
-  if (h->capacity > (g.bytes_ - kHeaderBytes) / (5 * sizeof(double))) {
+  if (h->capacity > (g.bytes_ - kMetaBytes) / (kSlots * 5 * sizeof(double))) {
     throw fail("header capacity " + std::to_string(h->capacity) + " exceeds the segment size " +
                std::to_string(g.bytes_));
   }
@@ -143,11 +155,14 @@ std::size_t SharedGeometry::capacity() const {
 SharedGeometry::Header* SharedGeometry::header() const {
   return static_cast<Header*>(base_);
 }
-const double* SharedGeometry::data() const {
-  return reinterpret_cast<const double*>(static_cast<const char*>(base_) + kHeaderBytes);
+SharedGeometry::Slot* SharedGeometry::slot(std::uint64_t generation) const {
+  return reinterpret_cast<Slot*>(static_cast<char*>(base_) + kHeaderBytes +
+                                 (generation % kSlots) * kSlotHeaderBytes);
 }
-double* SharedGeometry::data() {
-  return reinterpret_cast<double*>(static_cast<char*>(base_) + kHeaderBytes);
+double* SharedGeometry::data(std::uint64_t generation) const {
+  const std::size_t cap = static_cast<std::size_t>(header()->capacity);
+  return reinterpret_cast<double*>(static_cast<char*>(base_) + kMetaBytes) +
+         (generation % kSlots) * 5 * cap;
 }
 
 std::uint64_t SharedGeometry::write(const ParticleState& p, double time) {
@@ -157,39 +172,57 @@ std::uint64_t SharedGeometry::write(const ParticleState& p, double time) {
     throw InvalidArgument("shared geometry '" + name_ + "': " + std::to_string(n) +
                           " particles do not fit its capacity " + std::to_string(cap));
   }
-  double* d = data();
+  const std::uint64_t g = h->latest + 1;
+  Slot* s = slot(g);
+  // Sequence lock: the slot holds no generation while it is written, so a
+  // reader of the generation it held before (g - 2) fails instead of mixing.
+  std::atomic_ref<std::uint64_t>(s->generation).store(0, std::memory_order_relaxed);
+  std::atomic_thread_fence(std::memory_order_release);
+  double* d = data(g);
   std::memcpy(d, p.positions.data(), 3 * n * sizeof(double));
   std::memcpy(d + 3 * cap, p.densities.data(), n * sizeof(double));
   std::memcpy(d + 4 * cap, p.masses.data(), n * sizeof(double));
-  h->dimension = static_cast<std::uint32_t>(p.dimension);
-  h->count = n;
-  h->time = time;
-  return ++h->generation;
+  s->dimension = static_cast<std::uint32_t>(p.dimension);
+  s->count = n;
+  s->time = time;
+  std::atomic_ref<std::uint64_t>(s->generation).store(g, std::memory_order_release);
+  std::atomic_ref<std::uint64_t>(h->latest).store(g, std::memory_order_release);
+  return g;
 }
 
 void SharedGeometry::read(std::uint64_t generation, const ParticleState& previous,
                           ParticleState& out, std::string_view where) const {
-  const Header* h = header();
-  const std::size_t n = static_cast<std::size_t>(h->count);
-  const std::size_t cap = static_cast<std::size_t>(h->capacity);
-  if (h->generation != generation) {
-    throw InvalidArgument(std::string(where) + ": shared geometry '" + name_ +
-                              "' holds generation " + std::to_string(h->generation) +
-                              ", the request names " + std::to_string(generation) +
-                              " (stale or foreign segment)",
-                          {{"field", std::string(where)}, {"value", std::to_string(generation)}});
+  const std::size_t cap = static_cast<std::size_t>(header()->capacity);
+  const Slot* s = slot(generation);
+  auto stale = [&](std::uint64_t held, const char* when) {
+    return InvalidArgument(std::string(where) + ": shared geometry '" + name_ +
+                               "' holds generation " + std::to_string(held) +
+                               " in the slot of generation " + std::to_string(generation) + when +
+                               ", the request names " + std::to_string(generation) +
+                               " (stale, overwritten or foreign segment)",
+                           {{"field", std::string(where)}, {"value", std::to_string(generation)}});
+  };
+  const auto gen_ref = std::atomic_ref<std::uint64_t>(const_cast<std::uint64_t&>(s->generation));
+  if (const std::uint64_t held = gen_ref.load(std::memory_order_acquire);
+      generation == 0 || held != generation) {
+    throw stale(held, "");
   }
+  const std::size_t n = static_cast<std::size_t>(s->count);
   if (n != previous.size() || n > cap) {
     throw InvalidArgument(std::string(where) + ": shared geometry '" + name_ + "' holds " +
                           std::to_string(n) + " particles, expected " +
                           std::to_string(previous.size()) +
                           " (the particle set cannot change after Init)");
   }
-  const double* d = data();
-  out.dimension = static_cast<int>(h->dimension);
+  const double* d = data(generation);
+  out.dimension = static_cast<int>(s->dimension);
   out.positions.assign(d, d + 3 * n);
   out.densities.assign(d + 3 * cap, d + 3 * cap + n);
   out.masses.assign(d + 4 * cap, d + 4 * cap + n);
+  std::atomic_thread_fence(std::memory_order_acquire);
+  if (const std::uint64_t held = gen_ref.load(std::memory_order_relaxed); held != generation) {
+    throw stale(held, " after the copy (overwritten while reading)");
+  }
   out.velocities.clear();
   finish_geometry(previous, out, where);
 }

@@ -2,6 +2,12 @@
 #include "sadr/fluid/fluid_service.hpp"
 
 #include <chrono>
+#include <cstdlib>
+#include <string>
+
+#ifdef SADR_SERVICE_OPENMP
+#include <omp.h>
+#endif
 
 #include "sadr/common/log.hpp"
 #include "sadr/fluid/builtin_backends.hpp"
@@ -10,9 +16,36 @@
 namespace sadr::fluid {
 namespace {
 constexpr std::uint32_t kSnapshotVersion = 1;  // of the envelope; the blob has its own
+
+/// Threads of this service's OpenMP loops from SADR_FLUID_THREADS (0 = unset: OpenMP's
+/// default, OMP_NUM_THREADS or all cores). Lets the orchestrator's
+/// --fluid-threads give the fluid and the SSA different counts although both
+/// inherit one environment (and, embedded, share one process).
+int threads_from_env() {
+  const char* v = std::getenv("SADR_FLUID_THREADS");
+  if (v == nullptr || *v == '\0') return 0;
+  char* end = nullptr;
+  const long n = std::strtol(v, &end, 10);
+  if (*end != '\0' || n < 1 || n > 4096) {
+    throw InvalidArgument(
+        std::string("SADR_FLUID_THREADS = '") + v + "' (allowed: 1..4096, or unset)",
+        {{"field", "SADR_FLUID_THREADS"}, {"value", v}});
+  }
+  return static_cast<int>(n);
+}
+
+/// Applies the thread count to the calling (serving) thread: an OpenMP ICV of
+/// that thread, so embedded services in one process keep their own counts.
+void apply_threads(int threads) {
+#ifdef SADR_SERVICE_OPENMP
+  if (threads > 0 && omp_get_max_threads() != threads) omp_set_num_threads(threads);
+#else
+  (void)threads;
+#endif
+}
 }  // namespace
 
-FluidServiceHandler::FluidServiceHandler() {
+FluidServiceHandler::FluidServiceHandler() : threads_(threads_from_env()) {
   register_builtin_backends(registry_);
 }
 FluidServiceHandler::~FluidServiceHandler() = default;
@@ -35,6 +68,7 @@ int FluidServiceHandler::species(const std::string& name, const std::string& whe
 
 void FluidServiceHandler::handle_typed(const v1::FluidRequest& request, v1::FluidReply& reply,
                                        bool& shutdown) {
+  apply_threads(threads_);
   switch (request.body_case()) {
     case v1::FluidRequest::kInit:
       init(request.init(), *reply.mutable_init());

@@ -3,9 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <exception>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <optional>
+#include <thread>
 
 #include "sadr/common/log.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
@@ -34,6 +39,70 @@ class ScopedTimer {
   std::map<std::string, double>& timings_;
   const char* key_;
   Clock::time_point t0_;
+};
+
+/// One job at a time on a persistent thread: the SSA stage of the overlapped
+/// loop. The job owns the SSA client while it runs; the mutex hand-over orders
+/// every use of the client (and its ZeroMQ socket) between the two threads.
+class Worker {
+ public:
+  Worker() : thread_([this] { loop(); }) {}
+  ~Worker() {
+    {
+      std::lock_guard lock(mutex_);
+      quit_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();  // a running job ends by itself (every service call has a timeout)
+  }
+  Worker(const Worker&) = delete;
+  Worker& operator=(const Worker&) = delete;
+
+  /// Starts `job`; the previous one must have been waited for.
+  void submit(std::function<void()> job) {
+    {
+      std::lock_guard lock(mutex_);
+      job_ = std::move(job);
+      busy_ = true;
+      error_ = nullptr;
+    }
+    cv_.notify_all();
+  }
+  /// Blocks until the job has finished; rethrows its exception.
+  void wait() {
+    std::unique_lock lock(mutex_);
+    cv_.wait(lock, [&] { return !busy_; });
+    if (auto e = std::exchange(error_, nullptr)) std::rethrow_exception(e);
+  }
+
+ private:
+  void loop() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+      cv_.wait(lock, [&] { return quit_ || job_; });
+      if (!job_) return;  // quit with nothing to do
+      auto job = std::exchange(job_, nullptr);
+      lock.unlock();
+      std::exception_ptr error;
+      try {
+        job();
+      } catch (...) {
+        error = std::current_exception();
+      }
+      lock.lock();
+      error_ = error;
+      busy_ = false;
+      cv_.notify_all();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::function<void()> job_;
+  bool busy_ = false;
+  bool quit_ = false;
+  std::exception_ptr error_;
+  std::thread thread_;  // last: started after the members it uses
 };
 
 std::string frame_name(std::size_t index, const char* ext) {
@@ -79,6 +148,10 @@ class CoupledRun {
     manifest_.mode = options.mode;
     manifest_.started_utc = utc_now_iso8601();
     manifest_.plan = plan_.to_json();
+    // The same condition as Plan::overlap_allowed, checked again against what
+    // this run actually has (both clients).
+    overlap_ = plan_.overlap && plan_.overlap_allowed && fluid_ && ssa_ && plan_.fluid_stepping &&
+               !plan_.back_transfer && scene_.time.splitting == Splitting::kLie;
     ensure_directory(options.output_dir / "frames");
   }
 
@@ -96,27 +169,47 @@ class CoupledRun {
     Progress progress(t_, scene_.time.end, options_.progress_label, options_.progress);
     double next_checkpoint = next_checkpoint_after(t_);
     double last_checkpoint_time = -1.0;
-    while (auto cs = next_coupling_step(t_, scene_.time.coupling_step, scene_.time.end,
-                                        scene_.output.times)) {
-      step(*cs);
-      if (cs->output) {
-        write_frame(frame_index(cs->end), cs->end);
-        ++result.frames;
+    const auto& outputs = scene_.output.times;
+    const double tau = scene_.time.coupling_step, t_end = scene_.time.end;
+    auto stop_requested = [&] { return options_.interrupt && options_.interrupt->load(); };
+    auto reaches_stop_at = [&](double t) {
+      return t >= options_.stop_at - time_snap(t, tau, t_end);
+    };
+    if (overlap_) worker_.emplace();
+    const auto loop_t0 = Clock::now();
+    try {
+      while (auto cs = next_coupling_step(t_, tau, t_end, outputs)) {
+        // Overlap: leave the SSA stage of this step running while the fluid
+        // computes the next one, unless the step ends where both services are
+        // needed at once (a frame, a checkpoint, the stop time, the end) or a
+        // stop was requested. The same stages, in the same order per service.
+        const bool defer_ssa = overlap_ && !cs->output && !cs->last && cs->end < next_checkpoint &&
+                               !reaches_stop_at(cs->end) && !stop_requested() &&
+                               next_coupling_step(cs->end, tau, t_end, outputs);
+        step(*cs, defer_ssa);
+        if (cs->output) {
+          write_frame(frame_index(cs->end), cs->end);
+          ++result.frames;
+        }
+        const bool stop = stop_requested() || reaches_stop_at(t_);
+        if (stop || t_ >= next_checkpoint) {
+          result.last_checkpoint = checkpoint();
+          last_checkpoint_time = t_;
+          next_checkpoint = next_checkpoint_after(t_);
+        }
+        progress.update(t_, step_);
+        if (stop) {
+          result.interrupted = true;
+          break;
+        }
       }
-      const bool stop =
-          (options_.interrupt && options_.interrupt->load()) ||
-          t_ >= options_.stop_at - time_snap(t_, scene_.time.coupling_step, scene_.time.end);
-      if (stop || t_ >= next_checkpoint) {
-        result.last_checkpoint = checkpoint();
-        last_checkpoint_time = t_;
-        next_checkpoint = next_checkpoint_after(t_);
-      }
-      progress.update(t_, step_);
-      if (stop) {
-        result.interrupted = true;
-        break;
-      }
+      drain();
+    } catch (...) {
+      drain_after_failure();
+      throw;
     }
+    manifest_.timings_s["coupling_loop"] +=
+        std::chrono::duration<double>(Clock::now() - loop_t0).count();
     progress.finish(t_, step_);
     if (!result.interrupted && scene_.output.checkpoint_every > 0 && last_checkpoint_time != t_) {
       result.last_checkpoint = checkpoint();
@@ -181,7 +274,21 @@ class CoupledRun {
     particles_ = wire::from_proto(st.particles(), "fluid_service state");
   }
 
-  void step(const CouplingStep& cs) {
+  /// An SSA stage ready to send: the request and where its geometry is.
+  struct SsaStage {
+    ssa::v1::AdvanceRequest req;
+    std::uint64_t shm_generation = 0;  ///< > 0: the geometry is in shm_
+  };
+  /// What the SSA call reports, added to the manifest by the main thread.
+  struct SsaTimes {
+    double call = 0.0, graph = 0.0, nsm = 0.0;
+    std::uint64_t shm_generation = 0;
+  };
+
+  /// One coupling step. With `defer_ssa` (Lie, overlap on) the SSA stage is
+  /// left running on the worker thread; the next call to step() (or drain())
+  /// waits for it after its fluid stage.
+  void step(const CouplingStep& cs, bool defer_ssa) {
     const auto stages =
         coupling_stages(scene_.time.splitting, cs.begin, cs.end, plan_.fluid_stepping, !!ssa_);
     const std::uint64_t calls = std::max(1, plan_.fluid_calls_per_step);
@@ -213,37 +320,87 @@ class CoupledRun {
           geometry.reset();
         }
       } else {
-        ssa::v1::AdvanceRequest req;
-        req.set_run_id(run_id());
-        req.set_step_index(step_);
-        req.set_t_end(stage.end);
+        // The SSA stage of the previous step (overlapped with the fluid stage
+        // just done) comes first: exposed time, the SSA not hidden by the fluid.
+        drain();
+        ScopedTimer exposed(manifest_.timings_s, "ssa_wait");
+        SsaStage ssa;
+        ssa.req.set_run_id(run_id());
+        ssa.req.set_step_index(step_);
+        ssa.req.set_t_end(stage.end);
         if (moved && plan_.particles_to_ssa_each_step) {
           ScopedTimer timer(manifest_.timings_s, "transfer");
           if (shm_generation > 0) {
-            req.set_geometry_shm(shm_->name());
-            req.set_geometry_generation(shm_generation);
+            ssa.req.set_geometry_shm(shm_->name());
+            ssa.req.set_geometry_generation(shm_generation);
+            ssa.shm_generation = shm_generation;
           } else if (geometry) {
-            *req.mutable_particles() = std::move(*geometry);
+            *ssa.req.mutable_particles() = std::move(*geometry);
           } else {
             fluid::v1::GetStateRequest gs;
             auto st = fluid_->get_state(gs);
-            *req.mutable_particles() = std::move(*st.mutable_particles());
+            *ssa.req.mutable_particles() = std::move(*st.mutable_particles());
           }
           moved = false;
         }
         geometry.reset();
-        ScopedTimer timer(manifest_.timings_s, "ssa");
-        const auto rep = ssa_->advance(req);
-        // Both services have mapped the segment now: drop its name, so that
-        // nothing is left in /dev/shm whatever happens next (idempotent).
-        if (shm_generation > 0) shm_->unlink();
         shm_generation = 0;
-        manifest_.timings_s["ssa_graph"] += rep.graph_seconds();
-        manifest_.timings_s["ssa_nsm"] += rep.nsm_seconds();
+        if (defer_ssa && k + 1 == stages.size()) {
+          pending_times_ = SsaTimes{};
+          worker_->submit([this, s = std::move(ssa)] { pending_times_ = run_ssa(s); });
+          pending_ = true;
+          ++manifest_.overlapped_steps;
+        } else {
+          add_ssa_times(run_ssa(ssa));
+        }
       }
     }
     t_ = cs.end;
     ++step_;
+  }
+
+  /// The SSA call of one stage (main thread, or the worker when overlapped:
+  /// touches only ssa_ and its own result).
+  SsaTimes run_ssa(const SsaStage& s) {
+    const auto t0 = Clock::now();
+    const auto rep = ssa_->advance(s.req);
+    SsaTimes times;
+    times.call = std::chrono::duration<double>(Clock::now() - t0).count();
+    times.graph = rep.graph_seconds();
+    times.nsm = rep.nsm_seconds();
+    times.shm_generation = s.shm_generation;
+    return times;
+  }
+
+  void add_ssa_times(const SsaTimes& times) {
+    manifest_.timings_s["ssa"] += times.call;
+    manifest_.timings_s["ssa_graph"] += times.graph;
+    manifest_.timings_s["ssa_nsm"] += times.nsm;
+    // Both services have mapped the segment now: drop its name, so that
+    // nothing is left in /dev/shm whatever happens next (idempotent).
+    if (times.shm_generation > 0) shm_->unlink();
+  }
+
+  /// Waits for the SSA stage left running by step() (if any); rethrows its error.
+  void drain() {
+    if (!pending_) return;
+    ScopedTimer exposed(manifest_.timings_s, "ssa_wait");
+    pending_ = false;
+    worker_->wait();
+    add_ssa_times(pending_times_);
+  }
+
+  /// After a failure on the main thread: joins the SSA stage in flight (its own
+  /// error, if any, is logged; the main thread's error is the one reported).
+  void drain_after_failure() noexcept {
+    if (!pending_) return;
+    pending_ = false;
+    try {
+      worker_->wait();
+    } catch (const std::exception& e) {
+      log::warn("the overlapped ssa_service call failed too: ", e.what());
+    } catch (...) {
+    }
   }
 
   /// Copy numbers of the species a fluid term depends on -> concentrations X / V.
@@ -274,6 +431,7 @@ class CoupledRun {
   }
 
   void write_frame(std::size_t index, double t) {
+    drain();  // both services at the same time
     ScopedTimer timer(manifest_.timings_s, "output");
     ParticleState state = particles_;
     std::vector<SpeciesColumn> columns;
@@ -358,6 +516,7 @@ class CoupledRun {
   }
 
   std::filesystem::path checkpoint() {
+    drain();  // both services at the same time
     ScopedTimer timer(manifest_.timings_s, "checkpoint");
     CheckpointManifest m;
     m.scene_path = std::filesystem::absolute(scene_.source_path).string();
@@ -394,6 +553,11 @@ class CoupledRun {
   /// Per-step geometry fluid -> ssa on this host (RunOptions::shared_geometry).
   std::optional<wire::SharedGeometry> shm_;
   ParticleState particles_;
+  /// SSA step k runs on worker_ while the fluid computes step k + 1 (plan_.overlap).
+  bool overlap_ = false;
+  bool pending_ = false;          ///< an SSA stage runs on worker_
+  SsaTimes pending_times_{};      ///< written by the worker's job, read after wait()
+  std::optional<Worker> worker_;  ///< after what its jobs use: destroyed (joined) first
   double t_ = 0.0;
   std::uint64_t step_ = 0;
   RunManifest manifest_;

@@ -78,7 +78,42 @@ Plan make_plan(const Scene& scene) {
       p.skipped.push_back("strang splitting: not needed (only one operator runs)");
     }
   }
+  if (!p.ssa_service || !p.fluid_stepping) {
+    p.overlap_reason = "only one operator runs";
+  } else if (p.splitting != Splitting::kLie) {
+    p.overlap_reason = "strang splitting (the fluid's second half step needs the SSA's result)";
+  } else if (p.back_transfer) {
+    p.overlap_reason = "back-transfer (the fluid step reads the SSA's copy numbers)";
+  } else {
+    p.overlap_allowed = true;
+    p.overlap_reason = "not decided";
+  }
   return p;
+}
+
+void decide_overlap(Plan& p, OverlapRequest request, unsigned hardware_threads, int fluid_threads,
+                    int jobs) {
+  p.overlap = false;
+  if (!p.overlap_allowed) return;  // the reason from make_plan stays
+  if (request == OverlapRequest::kOff) {
+    p.overlap_reason = "--no-overlap";
+    return;
+  }
+  if (request == OverlapRequest::kOn) {
+    p.overlap = true;
+    p.overlap_reason = "--overlap";
+    return;
+  }
+  const unsigned per_job = hardware_threads / static_cast<unsigned>(std::max(1, jobs));
+  const std::string counts = std::to_string(per_job) + " hardware thread(s) per realization, " +
+                             std::to_string(std::max(1, fluid_threads)) + " fluid thread(s)";
+  if (per_job >= 2) {
+    p.overlap = true;
+    p.overlap_reason = "auto: a second hardware thread for the SSA (" + counts + ")";
+  } else {
+    p.overlap_reason =
+        "auto: no second hardware thread for the SSA (" + counts + "; --overlap forces it)";
+  }
 }
 
 std::vector<std::string> Plan::lines() const {
@@ -101,6 +136,8 @@ std::vector<std::string> Plan::lines() const {
   out.push_back(std::string("thermal noise: ") + (thermal_noise ? "on" : "off"));
   out.push_back("back-transfer ssa -> fluid: " +
                 (back_transfer ? join(back_transfer_species) : std::string("off")));
+  out.push_back(std::string("overlap ssa step k || fluid step k+1: ") + (overlap ? "on" : "off") +
+                " (" + overlap_reason + ")");
   for (const auto& s : skipped) out.push_back("skipped: " + s);
   return out;
 }
@@ -123,6 +160,8 @@ nlohmann::json Plan::to_json() const {
       {"fluid_reactions", fluid_reactions},
       {"ssa_reactions", ssa_reactions},
       {"skipped", skipped},
+      {"overlap", overlap},
+      {"overlap_reason", overlap_reason},
   };
 }
 

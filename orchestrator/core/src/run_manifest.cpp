@@ -33,6 +33,7 @@ nlohmann::json RunManifest::to_json() const {
           {"finished_utc", finished_utc},
           {"status", status},
           {"steps", steps},
+          {"overlapped_steps", overlapped_steps},
           {"time", time},
           {"timings_s", timings_s},
           {"frames", frames},

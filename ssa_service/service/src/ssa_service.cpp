@@ -2,6 +2,12 @@
 #include "sadr/ssa/ssa_service.hpp"
 
 #include <chrono>
+#include <cstdlib>
+#include <string>
+
+#ifdef SADR_SERVICE_OPENMP
+#include <omp.h>
+#endif
 
 #include "sadr/common/log.hpp"
 #include "sadr/ssa/inflow.hpp"
@@ -24,9 +30,36 @@ int find_species(const std::vector<std::string>& names, const std::string& name,
                         "' (known: " + (known.empty() ? "none" : known) + ")");
 }
 
+/// Threads of this service's OpenMP loops from SADR_SSA_THREADS (0 = unset: OpenMP's
+/// default, OMP_NUM_THREADS or all cores). Lets the orchestrator's
+/// --ssa-threads give the fluid and the SSA different counts although both
+/// inherit one environment (and, embedded, share one process).
+int threads_from_env() {
+  const char* v = std::getenv("SADR_SSA_THREADS");
+  if (v == nullptr || *v == '\0') return 0;
+  char* end = nullptr;
+  const long n = std::strtol(v, &end, 10);
+  if (*end != '\0' || n < 1 || n > 4096) {
+    throw InvalidArgument(
+        std::string("SADR_SSA_THREADS = '") + v + "' (allowed: 1..4096, or unset)",
+        {{"field", "SADR_SSA_THREADS"}, {"value", v}});
+  }
+  return static_cast<int>(n);
+}
+
+/// Applies the thread count to the calling (serving) thread: an OpenMP ICV of
+/// that thread, so embedded services in one process keep their own counts.
+void apply_threads(int threads) {
+#ifdef SADR_SERVICE_OPENMP
+  if (threads > 0 && omp_get_max_threads() != threads) omp_set_num_threads(threads);
+#else
+  (void)threads;
+#endif
+}
+
 }  // namespace
 
-SsaServiceHandler::SsaServiceHandler() = default;
+SsaServiceHandler::SsaServiceHandler() : threads_(threads_from_env()) {}
 SsaServiceHandler::~SsaServiceHandler() = default;
 
 NsmSolver& SsaServiceHandler::solver() const {
@@ -36,6 +69,7 @@ NsmSolver& SsaServiceHandler::solver() const {
 
 void SsaServiceHandler::handle_typed(const v1::SsaRequest& request, v1::SsaReply& reply,
                                      bool& shutdown) {
+  apply_threads(threads_);
   switch (request.body_case()) {
     case v1::SsaRequest::kInit:
       init(request.init(), *reply.mutable_init());

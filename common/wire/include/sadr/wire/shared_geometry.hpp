@@ -14,9 +14,16 @@
 /// and a generation number travel in the messages. Remote services (tcp, other
 /// hosts) keep the inline path.
 ///
-/// Layout: a 64-byte header (magic, version, dimension, capacity N, generation,
-/// time), then 3N positions, N densities, N masses (doubles, native byte order:
-/// same host). The segment is created 0600 with O_EXCL; the orchestrator
+/// Layout (version 2): a 64-byte header (magic, version, capacity N, last
+/// generation written), two 32-byte slot headers (generation, count, dimension,
+/// time), then two slots of 3N positions, N densities, N masses each (doubles,
+/// native byte order: same host). Generation g goes to slot g % 2 (a double
+/// buffer): with the orchestrator's overlapped loop, fluid_service writes
+/// generation g + 1 while ssa_service may still read generation g, and a write
+/// never touches the slot of the previous generation. A read checks the slot's
+/// generation before and after copying (a sequence lock), so reading a
+/// generation that was overwritten (g + 2) fails loudly instead of returning
+/// mixed data. The segment is created 0600 with O_EXCL; the orchestrator
 /// unlinks the name once both services have mapped it (the mappings stay
 /// valid), so a crash later leaves nothing behind in /dev/shm.
 #pragma once
@@ -54,22 +61,25 @@ class SharedGeometry {
   /// Removes the name (mappings, including this one, stay valid). Idempotent.
   void unlink();
 
-  /// Writes p's dimension, positions, densities and masses and `time`, bumps the
-  /// generation and returns it. Throws InvalidArgument if p has more particles
-  /// than the segment holds.
+  /// Writes p's dimension, positions, densities and masses and `time` as the
+  /// next generation g (into slot g % 2, leaving generation g - 1 readable) and
+  /// returns g. Throws InvalidArgument if p has more particles than the segment
+  /// holds.
   std::uint64_t write(const ParticleState& p, double time);
   /// Reads what write() stored into out (dimension, positions, densities, masses;
   /// kinds and ids from `previous`, velocities empty) and validates it. Throws
-  /// InvalidArgument naming `where` if the generation is not `generation` (a
-  /// stale or foreign segment), or the count differs from previous.size().
+  /// InvalidArgument naming `where` if the slot of `generation` does not hold it
+  /// (a stale, overwritten or foreign generation, also when it is overwritten
+  /// during the copy), or the count differs from previous.size().
   void read(std::uint64_t generation, const ParticleState& previous, ParticleState& out,
             std::string_view where) const;
 
  private:
   struct Header;
+  struct Slot;
   Header* header() const;
-  const double* data() const;
-  double* data();
+  Slot* slot(std::uint64_t generation) const;
+  double* data(std::uint64_t generation) const;
 
   std::string name_;
   void* base_ = nullptr;

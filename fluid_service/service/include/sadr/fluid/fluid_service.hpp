@@ -46,6 +46,7 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
   void apply_inflows();
   int species(const std::string& name, const std::string& where) const;
 
+  int threads_ = 0;  ///< OpenMP threads of the serving thread (SADR_*_THREADS; 0 = default)
   BackendRegistry registry_;
   std::unique_ptr<FluidBackend> backend_;
   FluidModel model_;

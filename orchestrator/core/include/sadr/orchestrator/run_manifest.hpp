@@ -29,12 +29,21 @@ struct RunManifest {
   std::map<std::string, std::string> environment;
   std::string started_utc;  ///< ISO 8601, e.g. "2026-11-22T03:00:00Z"
   std::string finished_utc;
-  std::string status = "running";           ///< "running", "ok", "failed: <reason>", "interrupted"
-  std::uint64_t steps = 0;                  ///< coupling steps completed
-  double time = 0.0;                        ///< simulated time reached [time]
-  std::map<std::string, double> timings_s;  ///< wall-clock seconds per part ("fluid", "ssa", ...)
-  std::vector<std::string> frames;          ///< frame files written, in order
-  nlohmann::json plan;                      ///< Plan::to_json()
+  std::string status = "running";  ///< "running", "ok", "failed: <reason>", "interrupted"
+  std::uint64_t steps = 0;         ///< coupling steps completed
+  /// Coupling steps whose SSA stage ran while the fluid computed the next step
+  /// (plan.overlap); the others ran their stages one after the other.
+  std::uint64_t overlapped_steps = 0;
+  double time = 0.0;  ///< simulated time reached [time]
+  /// Wall-clock seconds per part: "fluid" (fluid calls), "fluid_compute" (inside
+  /// the service), "ssa" (SSA calls), "ssa_graph", "ssa_nsm" (inside the
+  /// service), "transfer" (geometry hand-over), "coupling_loop" (the whole loop,
+  /// frames and checkpoints included), "ssa_wait" (main thread on SSA stages
+  /// outside a fluid call: the SSA time not hidden by the overlap), "init",
+  /// "output", "checkpoint", ...
+  std::map<std::string, double> timings_s;
+  std::vector<std::string> frames;  ///< frame files written, in order
+  nlohmann::json plan;              ///< Plan::to_json()
 
   RunManifest();
   [[nodiscard]] nlohmann::json to_json() const;

@@ -40,6 +40,7 @@ class SsaServiceHandler : public wire::TypedHandler<v1::SsaRequest, v1::SsaReply
   void handle_typed(const v1::SsaRequest& request, v1::SsaReply& reply, bool& shutdown) override;
 
  private:
+  int threads_ = 0;  ///< OpenMP threads of the serving thread (SADR_*_THREADS; 0 = default)
   void init(const v1::InitRequest& req, v1::InitReply& rep);
   void advance(const v1::AdvanceRequest& req, v1::AdvanceReply& rep);
   void get_counts(const v1::GetCountsRequest& req, v1::GetCountsReply& rep) const;
