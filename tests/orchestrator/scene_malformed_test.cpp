@@ -35,6 +35,12 @@ std::string error_of(const std::string& text, const std::string& file = "scene.y
   return "<no error>";
 }
 
+/// The base scene's fluid section as an sdpd open channel with `open_boundary` (lines 13-16).
+std::string open_channel(const std::string& open_boundary) {
+  return "  backend: sdpd\n  sound_speed: 1\n  shear_viscosity: 0.1\n  open_boundary: " +
+         open_boundary + "\n";
+}
+
 const std::vector<MalformedCase>& cases() {
   static const std::vector<MalformedCase> kCases = {
       {"misspelt_key_suggests_nearest",
@@ -226,6 +232,55 @@ const std::vector<MalformedCase>& cases() {
        "condition: dirichlett",
        {"species[0].boundaries[0].condition: unknown boundary condition 'dirichlett'; did you "
         "mean 'dirichlet'?"}},
+      // Open boundaries (fluid.open_boundary): sdpd backend, lines 13-16; the reaction fires
+      // on fluid, inlet and outlet unless a case says otherwise.
+      {"open_boundary_inlet_shorter_than_h",
+       "  backend: static\n",
+       open_channel("{inlet: [0.2, 0.45], outlet: [0.55, 1.0], mean_velocity: 0.1}"),
+       {"scene.yaml:16:",
+        "fluid.open_boundary.inlet: length 0.25 is shorter than the kernel "
+        "support h = 0.45; allowed: a length >= h"},
+       "rate: 1.0}",
+       "rate: 1.0, kinds: [fluid, inlet, outlet]}"},
+      {"open_boundary_unknown_key_suggests_nearest",
+       "  backend: static\n",
+       open_channel("{inlet: [0, 0.45], outlet: [0.55, 1.0], mean_velocty: 0.1}"),
+       {"scene.yaml:16:",
+        "unknown key 'mean_velocty' in fluid.open_boundary; did you mean "
+        "'mean_velocity'?",
+        "fluid.open_boundary.mean_velocity: missing; required: mean_velocity or max_velocity"},
+       "rate: 1.0}",
+       "rate: 1.0, kinds: [fluid, inlet, outlet]}"},
+      {"open_boundary_needs_sdpd",
+       "  smoothing_length: 0.45\n",
+       "  smoothing_length: 0.45\n  open_boundary: {inlet: [0, 0.45], outlet: [0.55, 1.0], "
+       "mean_velocity: 0.1}\n",
+       {"scene.yaml:15:",
+        "fluid.open_boundary: backend 'static' has no open boundaries; "
+        "allowed: backend sdpd"},
+       "rate: 1.0}",
+       "rate: 1.0, kinds: [fluid, inlet, outlet]}"},
+      {"open_boundary_reaction_kinds_fluid_only",
+       "  backend: static\n",
+       open_channel("{inlet: [0, 0.45], outlet: [0.55, 1.0], mean_velocity: 0.1}"),
+       {"scene.yaml:27:5:",
+        "reactions[0]: kinds: default [fluid]: with fluid.open_boundary "
+        "particles change kind between fluid, inlet and outlet; allowed: all "
+        "three of them or none"}},
+      {"open_boundary_parabolic_in_1d",
+       "  backend: static\n",
+       open_channel("{inlet: [0, 0.45], outlet: [0.55, 1.0], mean_velocity: 0.1, profile: "
+                    "parabolic}"),
+       {"fluid.open_boundary.profile: 'parabolic' needs a cross axis; allowed in 1D: uniform"},
+       "rate: 1.0}",
+       "rate: 1.0, kinds: [fluid, inlet, outlet]}"},
+      {"open_boundary_outlet_before_inlet",
+       "  backend: static\n",
+       open_channel("{inlet: [0, 0.45], outlet: [0.3, 1.0], mean_velocity: 0.1}"),
+       {"fluid.open_boundary.outlet: inlet [0, 0.45], outlet [0.3, 1]; allowed: inlet = "
+        "[x0 - Lb, x0], outlet = [x1, x1 + Lb'] with x0 < x1"},
+       "rate: 1.0}",
+       "rate: 1.0, kinds: [fluid, inlet, outlet]}"},
   };
   return kCases;
 }

@@ -14,6 +14,7 @@ namespace sadr::fluid {
 namespace {
 constexpr std::uint64_t kMagic = 0x3144504453524441ULL;  // "ADRSSDPD1"-ish tag
 constexpr std::uint32_t kBlobVersion = 2;                // 2: + positions of the last list build
+constexpr std::uint32_t kBlobVersionOpen = 3;  // 3: + kinds, conveyor flags, inlet holes (open)
 
 void check_initial(const FluidModel& model, const ParticleState& s,
                    const std::vector<std::vector<double>>& c) {
@@ -45,10 +46,23 @@ void check_initial(const FluidModel& model, const ParticleState& s,
   const PeriodicBox pb(model.box);
   for (std::size_t i = 0; i < s.size(); ++i) {
     const ParticleKind k = s.kind(i);
-    if (k == ParticleKind::kInlet || k == ParticleKind::kOutlet) {
+    const auto& ob = model.open_boundary;
+    if (!ob.enabled && (k == ParticleKind::kInlet || k == ParticleKind::kOutlet)) {
       throw InvalidArgument("particle " + std::to_string(i) + " has kind " +
                             std::string(to_string(k)) +
-                            ", not supported by this backend (fluid, wall)");
+                            ", which needs an open boundary (model.open_boundary; without it: "
+                            "fluid, wall)");
+    }
+    if (ob.enabled && k != ParticleKind::kWall) {
+      const double xa = s.positions[3 * i + static_cast<std::size_t>(ob.axis)];
+      if (!(xa >= ob.inlet_lo && xa <= ob.outlet_hi)) {
+        throw InvalidArgument("particle " + std::to_string(i) + " (kind " +
+                              std::string(to_string(k)) + ") at " + format_value(xa) +
+                              " along the flow axis lies outside the open channel [inlet_lo, "
+                              "outlet_hi] = [" +
+                              format_value(ob.inlet_lo) + ", " + format_value(ob.outlet_hi) +
+                              "] (only wall particles may)");
+      }
     }
     if (!pb.inside(&s.positions[3 * i])) {
       throw InvalidArgument("particle " + std::to_string(i) +
@@ -125,8 +139,36 @@ void SdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   species_.apply_dirichlet(y_.c);
   list_ref_x_.clear();
   nlist_ = {};
-  half_ok_ = !morris_ && species_.transported().empty() && !species_.has_reactions() &&
+  open_ = model.open_boundary.enabled;
+  if (open_) {
+    // Reaction sites are fixed at setup by kind, but kinds change as particles move through
+    // the buffers: a reaction must treat fluid, inlet and outlet alike.
+    for (std::size_t r = 0; r < model.reactions.size(); ++r) {
+      const auto& ks = model.reactions[r].kinds;
+      auto has = [&](ParticleKind k) {
+        return ks.empty() ? k == ParticleKind::kFluid
+                          : std::find(ks.begin(), ks.end(), k) != ks.end();
+      };
+      const bool f = has(ParticleKind::kFluid);
+      if (f != has(ParticleKind::kInlet) || f != has(ParticleKind::kOutlet)) {
+        throw InvalidArgument("reactions[" + std::to_string(r) +
+                              "].kinds: with an open boundary a reaction fires on all of fluid, "
+                              "inlet, outlet or on none of them (particles change kind)");
+      }
+    }
+  }
+  buffer_.assign(n, 0);
+  conveyor_.assign(n, 0);  // initial inlet particles are conveyor particles
+  for (std::size_t i = 0; i < n && open_; ++i) {
+    const double s = y_.x[3 * i + static_cast<std::size_t>(model.open_boundary.axis)];
+    conveyor_[i] = !wall_[i] && s < model.open_boundary.fluid_lo;
+    if (!wall_[i])
+      kinds_[i] = s < model.open_boundary.fluid_lo ? ParticleKind::kInlet : ParticleKind::kFluid;
+  }
+  half_ok_ = !open_ && !morris_ && species_.transported().empty() && !species_.has_reactions() &&
              std::none_of(wall_.begin(), wall_.end(), [](std::uint8_t w) { return w != 0; });
+  holes_.clear();
+  if (open_) apply_open_boundary(0.0);
   time_ = 0;
   prepared_ = false;
   initialized_ = true;
@@ -313,6 +355,7 @@ StepReport SdpdBackend::advance(std::uint64_t step_index, double time_step) {
     if (remaining < 1e-12 * time_step) remaining = 0;
     time_ += dt;
     ++sub;
+    if (open_) apply_open_boundary(dt);
     check_health(step_index, sub);
   }
   rep.time = time_;
@@ -335,6 +378,144 @@ StepReport SdpdBackend::advance(std::uint64_t step_index, double time_step) {
   }
   rep.max_speed = std::sqrt(vmax2);
   return rep;
+}
+
+// Open boundary (docs/fluid-core.md 2, "Open boundaries"). The inlet is a conveyor: its slots
+// move with the inflow velocity; a conveyor particle entering the fluid leaves a hole one inlet
+// length behind it (a hole reaching the fluid moves back by the same length). The outlet
+// particles farthest downstream fill the holes (the hole farthest downstream first); with no
+// outlet particle left a hole waits. An outlet particle past outlet_hi with no hole to fill is
+// shifted back by outlet_hi - inlet_lo (an extra inlet particle, no slot). Kinds follow the
+// position along the flow axis. Serial, in index order: independent of the thread count.
+void SdpdBackend::apply_open_boundary(double dt) {
+  const auto& ob = model_.open_boundary;
+  const auto a = static_cast<std::size_t>(ob.axis);
+  const std::size_t n = mass_.size();
+  const double lb_in = ob.fluid_lo - ob.inlet_lo;
+  auto classify = [&](double s) {
+    return s < ob.fluid_lo   ? ParticleKind::kInlet
+           : s < ob.fluid_hi ? ParticleKind::kFluid
+                             : ParticleKind::kOutlet;
+  };
+  for (std::size_t k = 0; k < holes_.size(); k += 3) {
+    double* x = &holes_[k];
+    x[a] += dt * ob.inflow_speed(x);
+    if (x[a] >= ob.fluid_lo) x[a] -= lb_in;
+  }
+  ob_outlets_.clear();
+  bool past = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (wall_[i]) continue;
+    const double* x = &y_.x[3 * i];
+    const ParticleKind k = classify(x[a]);
+    if (kinds_[i] == ParticleKind::kInlet && k != ParticleKind::kInlet && conveyor_[i]) {
+      conveyor_[i] = 0;  // leaves a hole behind it
+      holes_.insert(holes_.end(), {x[0], x[1], x[2]});
+      holes_[holes_.size() - 3 + a] -= lb_in;
+    }
+    kinds_[i] = k;
+    if (k == ParticleKind::kOutlet) {
+      ob_outlets_.push_back(static_cast<std::uint32_t>(i));
+      past = past || x[a] > ob.outlet_hi;
+    }
+  }
+  if (!ob_outlets_.empty() && (past || !holes_.empty())) {
+    // outlet particles and holes, farthest downstream first (ties: lower index / older hole)
+    std::sort(ob_outlets_.begin(), ob_outlets_.end(), [&](std::uint32_t p, std::uint32_t q) {
+      const double xp = y_.x[3 * p + a], xq = y_.x[3 * q + a];
+      return xp > xq || (xp == xq && p < q);
+    });
+    ob_crossing_.resize(holes_.size() / 3);
+    for (std::size_t k = 0; k < ob_crossing_.size(); ++k)
+      ob_crossing_[k] = static_cast<std::uint32_t>(k);
+    std::stable_sort(
+        ob_crossing_.begin(), ob_crossing_.end(),
+        [&](std::uint32_t p, std::uint32_t q) { return holes_[3 * p + a] > holes_[3 * q + a]; });
+    const double shift = ob.outlet_hi - ob.inlet_lo;
+    const std::size_t filled = std::min(ob_outlets_.size(), ob_crossing_.size());
+    for (std::size_t k = 0; k < ob_outlets_.size(); ++k) {
+      const std::uint32_t j = ob_outlets_[k];
+      if (k < filled) {
+        for (int q = 0; q < 3; ++q) y_.x[3 * j + q] = holes_[3 * ob_crossing_[k] + q];
+        conveyor_[j] = 1;
+        kinds_[j] = ParticleKind::kInlet;
+      } else if (y_.x[3 * j + a] > ob.outlet_hi) {
+        y_.x[3 * j + a] -= shift;
+        conveyor_[j] = 0;  // an extra inlet particle: it leaves no hole
+        kinds_[j] = ParticleKind::kInlet;
+      } else {
+        break;  // (sorted: the others are inside the outlet)
+      }
+    }
+    if (filled > 0) {  // drop the filled holes, keep the others in creation order
+      std::vector<std::uint8_t> gone(ob_crossing_.size(), 0);
+      for (std::size_t k = 0; k < filled; ++k) gone[ob_crossing_[k]] = 1;
+      std::size_t w = 0;
+      for (std::size_t k = 0; k < gone.size(); ++k) {
+        if (gone[k]) continue;
+        for (int q = 0; q < 3; ++q) holes_[3 * w + q] = holes_[3 * k + q];
+        ++w;
+      }
+      holes_.resize(3 * w);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (wall_[i]) continue;
+    buffer_[i] = kinds_[i] != ParticleKind::kFluid;
+    if (kinds_[i] == ParticleKind::kInlet) {  // prescribed velocity
+      double* vi = &y_.v[3 * i];
+      vi[0] = vi[1] = vi[2] = 0.0;
+      vi[a] = ob.inflow_speed(&y_.x[3 * i]);
+    } else if (kinds_[i] == ParticleKind::kOutlet) {  // prescribed pressure P = 0
+      y_.rho[i] = model_.reference_density;
+    }
+  }
+  // Zero-gradient values from the fluid (Lastiwka et al. 2009: a subsonic inlet takes one
+  // quantity from inside, the pressure; a subsonic outlet everything but the pressure): the
+  // density of an inlet particle and the velocity of an outlet particle are the Shepard average,
+  // over the fluid particles within one kernel support of the buffer's face, weighted by the
+  // kernel of the cross-flow distance (so d/d(axis) = 0 across the buffer).
+  const double h = kernel_.support();
+  extrapolate_from_fluid(ParticleKind::kInlet, ob.fluid_lo, ob.fluid_lo + h);
+  extrapolate_from_fluid(ParticleKind::kOutlet, ob.fluid_hi - h, ob.fluid_hi);
+}
+
+void SdpdBackend::extrapolate_from_fluid(ParticleKind target, double lo, double hi) {
+  const auto& ob = model_.open_boundary;
+  const auto a = static_cast<std::size_t>(ob.axis);
+  const std::size_t n = mass_.size();
+  const double h = kernel_.support(), h2 = h * h;
+  slab_fluid_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = y_.x[3 * i + a];
+    if (kinds_[i] == ParticleKind::kFluid && s >= lo && s < hi)
+      slab_fluid_.push_back(static_cast<std::uint32_t>(i));
+  }
+  const int dim = model_.box.dimension;
+  const bool velocity = target == ParticleKind::kOutlet;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kinds_[i] != target) continue;
+    double wsum = 0, v[3] = {0, 0, 0}, rho = 0;
+    for (const std::uint32_t j : slab_fluid_) {
+      double d[3] = {0, 0, 0};
+      for (int c = 0; c < dim; ++c) {
+        if (c != ob.axis) d[c] = y_.x[3 * i + c] - y_.x[3 * j + c];
+      }
+      pbox_.minimum_image(d);
+      const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      if (r2 >= h2) continue;
+      const double w = kernel_.w(std::sqrt(r2)) * mass_[j] / y_.rho[j];
+      wsum += w;
+      for (int c = 0; c < 3; ++c) v[c] += w * y_.v[3 * j + c];
+      rho += w * y_.rho[j];
+    }
+    if (!(wsum > 0)) continue;  // no fluid across from it: keeps its values
+    if (velocity) {
+      for (int c = 0; c < 3; ++c) y_.v[3 * i + c] = v[c] / wsum;
+    } else {
+      y_.rho[i] = rho / wsum;
+    }
+  }
 }
 
 void SdpdBackend::check_health(std::uint64_t step_index, std::uint32_t substep) const {
@@ -446,7 +627,7 @@ std::string SdpdBackend::save() const {
   require_initialized("save");
   BlobWriter w;
   w.put(kMagic);
-  w.put(kBlobVersion);
+  w.put(open_ ? kBlobVersionOpen : kBlobVersion);
   w.put_string(name());
   w.put(model_.seed);
   w.put(time_);
@@ -458,6 +639,13 @@ std::string SdpdBackend::save() const {
   // The half-pair path sums in slab order, and slabs are assigned at list builds: restoring the
   // list at the same reference positions keeps restarts bit-exact.
   w.put_vector(list_ref_x_);
+  if (open_) {  // version 3: kinds change at open boundaries
+    std::vector<std::uint8_t> k(kinds_.size());
+    for (std::size_t i = 0; i < k.size(); ++i) k[i] = static_cast<std::uint8_t>(kinds_[i]);
+    w.put_vector(k);
+    w.put_vector(conveyor_);
+    w.put_vector(holes_);
+  }
   return w.take();
 }
 
@@ -467,10 +655,14 @@ void SdpdBackend::restore(std::string_view blob) {
   if (r.get<std::uint64_t>() != kMagic)
     throw InvalidArgument("restore: not a sadr fluid state blob");
   const auto version = r.get<std::uint32_t>();
-  if (version != kBlobVersion && version != 1) {
+  if (version != kBlobVersion && version != 1 && version != kBlobVersionOpen) {
     throw InvalidArgument("restore: blob version " + std::to_string(version) +
-                          " unsupported (this build reads 1 and " + std::to_string(kBlobVersion) +
-                          ")");
+                          " unsupported (this build reads 1, 2 and 3)");
+  }
+  if ((version == kBlobVersionOpen) != open_) {
+    throw InvalidArgument(std::string("restore: blob ") +
+                          (open_ ? "has no particle kinds but the model has an open boundary"
+                                 : "has particle kinds (open boundary) but the model has none"));
   }
   const std::string backend = r.get_string();
   if (backend != name())
@@ -494,8 +686,29 @@ void SdpdBackend::restore(std::string_view blob) {
     if (!ref.empty() && ref.size() != 3 * n)
       throw InvalidArgument("restore: list reference positions have the wrong size");
   }
+  std::vector<ParticleKind> kinds = kinds_;
+  std::vector<std::uint8_t> conveyor = conveyor_;
+  std::vector<double> holes = holes_;
+  if (version == kBlobVersionOpen) {
+    const auto k = r.get_vector<std::uint8_t>(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const bool wall_k = k[i] == static_cast<std::uint8_t>(ParticleKind::kWall);
+      if (k[i] > 3 || wall_k != (wall_[i] != 0))
+        throw InvalidArgument("restore: particle kinds do not match the model's wall particles");
+      kinds[i] = static_cast<ParticleKind>(k[i]);
+    }
+    conveyor = r.get_vector<std::uint8_t>(n);
+    holes = r.get_vector<double>();
+    if (holes.size() % 3 != 0) throw InvalidArgument("restore: inlet holes have the wrong size");
+  }
   if (!r.at_end()) throw InvalidArgument("restore: trailing bytes in state blob");
   y_ = std::move(y);
+  kinds_ = std::move(kinds);
+  conveyor_ = std::move(conveyor);
+  holes_ = std::move(holes);
+  for (std::size_t i = 0; i < n; ++i) {
+    buffer_[i] = kinds_[i] == ParticleKind::kInlet || kinds_[i] == ParticleKind::kOutlet;
+  }
   time_ = t;
   prepared_ = false;
   list_ref_x_.clear();

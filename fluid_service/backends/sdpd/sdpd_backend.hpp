@@ -135,6 +135,12 @@ class SdpdBackend final : public FluidBackend {
     p.sqrt_inv_nd = noise_on ? std::sqrt(nd_inv) : 0.0;
   }
   void check_health(std::uint64_t step_index, std::uint32_t substep) const;
+  /// Open boundary: kinds by position, recycling, inflow velocity and density (after every
+  /// sub-step and at initialize()).
+  void apply_open_boundary(double dt);
+  /// Open boundary: zero-gradient values of the `target` buffer particles (inlet: density;
+  /// outlet: velocity) from the fluid particles with axis coordinate in [lo, hi).
+  void extrapolate_from_fluid(ParticleKind target, double lo, double hi);
   void require_initialized(const char* what) const;
 
   bool initialized_ = false;
@@ -196,7 +202,13 @@ class SdpdBackend final : public FluidBackend {
   std::vector<double> wall_depth_;  ///< distance of a wall particle behind its plane [length]
   bool morris_ = false;
   std::vector<double> mass_;
-  std::vector<ParticleKind> kinds_;
+  std::vector<ParticleKind> kinds_;     ///< current kinds (inlet/outlet change at open boundaries)
+  bool open_ = false;                   ///< model_.open_boundary.enabled
+  std::vector<std::uint8_t> buffer_;    ///< 1: inlet or outlet (no forces, no noise, fixed rho)
+  std::vector<std::uint8_t> conveyor_;  ///< inlet particle holding a conveyor slot (saved)
+  std::vector<double> holes_;           ///< empty conveyor slots, 3 coordinates each (saved)
+  /// apply_open_boundary scratch: fluid next to the outlet, conveyor crossings, outlets
+  std::vector<std::uint32_t> slab_fluid_, ob_crossing_, ob_outlets_;
   std::vector<std::uint64_t> ids_;
   Y y_, ytmp_;
   Rates r0_, r1_;

@@ -106,7 +106,8 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
 #pragma omp parallel for schedule(static) if (ni > kMinParallel)
     for (std::int64_t ii = 0; ii < ni; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      if (wall_[i]) continue;  // wall layers have truncated support: keep their initial density
+      // wall layers have truncated support: keep their initial density; buffers: prescribed
+      if (wall_[i] || buffer_[i]) continue;
       double rho = mass_[i] * kernel_.w0();
       PairGeometry<D> g{};
       for (const std::uint32_t j : nlist_.of(i)) {
@@ -278,6 +279,14 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
         }
       }
       out.drho[i] = drho;
+      if (open_ && buffer_[i]) {  // inlet/outlet: no forces, no noise, density set after
+        out.drho[i] = 0.0;        // each sub-step (apply_open_boundary)
+        if (species_on) {
+          max_k_sum = std::max(max_k_sum, k_sum);
+          species_.add_reactions(i, y.c, out.dc);
+        }
+        continue;
+      }
       if (wall_i) {
         if (species_on && species_.active_wall(i)) {
           max_k_sum = std::max(max_k_sum, k_sum);

@@ -133,6 +133,48 @@ void FluidModel::validate() const {
             "must be a unit vector");
     }
   }
+  if (open_boundary.enabled) {
+    const auto& ob = open_boundary;
+    const int d = box.dimension;
+    const std::string f = "open_boundary";
+    if (ob.axis < 0 || ob.axis >= d) {
+      p.add(f + ".axis", ob.axis, "must be an active axis [0, " + std::to_string(d) + ")");
+    } else {
+      const int a = ob.axis;
+      if (box.periodic[a]) p.add_text(f + ".axis", "the flow axis must be walled, not periodic");
+      const double hs = smoothing_length;
+      if (!(ob.inlet_lo >= box.lo[a] && ob.outlet_hi <= box.hi[a])) {
+        p.add(f + ".inlet_lo", ob.inlet_lo,
+              "inlet_lo and outlet_hi (" + format_value(ob.outlet_hi) +
+                  ") must lie inside the box [" + format_value(box.lo[a]) + ", " +
+                  format_value(box.hi[a]) + "] along the flow axis");
+      }
+      if (!(ob.fluid_lo - ob.inlet_lo >= hs)) {
+        p.add(f + ".inlet length", ob.fluid_lo - ob.inlet_lo,
+              "fluid_lo - inlet_lo must be >= the kernel support h = " + format_value(hs));
+      }
+      if (!(ob.outlet_hi - ob.fluid_hi >= hs)) {
+        p.add(f + ".outlet length", ob.outlet_hi - ob.fluid_hi,
+              "outlet_hi - fluid_hi must be >= the kernel support h = " + format_value(hs));
+      }
+      if (!(ob.fluid_hi > ob.fluid_lo)) {
+        p.add(f + ".fluid_hi", ob.fluid_hi, "must be > fluid_lo = " + format_value(ob.fluid_lo));
+      }
+    }
+    if (!(std::isfinite(ob.mean_velocity) && ob.mean_velocity > 0)) {
+      p.add(f + ".mean_velocity", ob.mean_velocity, "must be finite and > 0 (flow along +axis)");
+    }
+    if (ob.profile == OpenBoundary::Profile::kParabolic) {
+      if (ob.cross_axis < 0 || ob.cross_axis >= d || ob.cross_axis == ob.axis) {
+        p.add(f + ".cross_axis", ob.cross_axis,
+              "a parabolic profile needs an active axis other than the flow axis");
+      }
+      if (!(std::isfinite(ob.wall_lo) && std::isfinite(ob.wall_hi) && ob.wall_hi > ob.wall_lo)) {
+        p.add(f + ".wall_hi", ob.wall_hi,
+              "must be finite and > wall_lo = " + format_value(ob.wall_lo));
+      }
+    }
+  }
   if (!p.text.empty()) throw InvalidArgument("invalid fluid model: " + p.text, p.details);
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // sadr.fluid.v1.FluidModel -> sadr::fluid::FluidModel (validation at the boundary).
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "sadr/fluid/fluid_service.hpp"
@@ -45,6 +46,48 @@ std::vector<std::pair<int, int>> stoichiometry(
     out.emplace_back(s, static_cast<int>(entries.Get(k).count()));
   }
   return out;
+}
+
+/// parameters["open_boundary.<field>"] (numbers; the orchestrator writes them from the scene's
+/// fluid.open_boundary, docs/scene-format.md). Any such key switches the open boundary on.
+void open_boundary_parameter(OpenBoundary& ob, const std::string& key, double value,
+                             const std::string& where) {
+  const std::string field = key.substr(std::string("open_boundary.").size());
+  auto whole = [&](int lo, int hi) {
+    if (!(value >= lo && value <= hi && value == std::floor(value))) {
+      throw InvalidArgument(where + ".parameters['" + key + "'] = " + format_value(value) +
+                            " (allowed: a whole number in [" + std::to_string(lo) + ", " +
+                            std::to_string(hi) + "])");
+    }
+    return static_cast<int>(value);
+  };
+  ob.enabled = true;
+  if (field == "axis") {
+    ob.axis = whole(0, 2);
+  } else if (field == "inlet_lo") {
+    ob.inlet_lo = value;
+  } else if (field == "fluid_lo") {
+    ob.fluid_lo = value;
+  } else if (field == "fluid_hi") {
+    ob.fluid_hi = value;
+  } else if (field == "outlet_hi") {
+    ob.outlet_hi = value;
+  } else if (field == "profile") {
+    ob.profile =
+        whole(0, 1) == 0 ? OpenBoundary::Profile::kUniform : OpenBoundary::Profile::kParabolic;
+  } else if (field == "mean_velocity") {
+    ob.mean_velocity = value;
+  } else if (field == "cross_axis") {
+    ob.cross_axis = whole(0, 2);
+  } else if (field == "wall_lo") {
+    ob.wall_lo = value;
+  } else if (field == "wall_hi") {
+    ob.wall_hi = value;
+  } else {
+    throw InvalidArgument(where + ".parameters: unknown key '" + key +
+                          "' (allowed open_boundary.<axis, inlet_lo, fluid_lo, fluid_hi, "
+                          "outlet_hi, profile, mean_velocity, cross_axis, wall_lo, wall_hi>)");
+  }
 }
 
 }  // namespace
@@ -142,6 +185,8 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
       m.density_band = value;
     } else if (key == "neighbor_skin") {
       m.neighbor_skin = value;
+    } else if (key.rfind("open_boundary.", 0) == 0) {
+      open_boundary_parameter(m.open_boundary, key, value, where);
     } else {
       m.backend_parameters[key] = value;  // the backend checks the name
     }

@@ -172,14 +172,31 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
 std::vector<ParticleKind> read_kinds(SceneContext& ctx, const Field& f) {
   std::vector<ParticleKind> kinds;
   auto names = ctx.reader.string_list(f, "kinds", false);
-  if (!names) return {ParticleKind::kFluid};
-  for (const auto& k : *names) {
+  if (!names) kinds = {ParticleKind::kFluid};
+  for (const auto& k : names ? *names : std::vector<std::string>{}) {
     if (auto kind = parse_kind(k)) {
       kinds.push_back(*kind);
     } else {
       ctx.reader.error(
           YamlReader::child(f, "kinds"),
           "unknown particle kind '" + k + "' (allowed: " + join_names(kKindNames) + ")");
+    }
+  }
+  if (ctx.open_boundary) {
+    auto has = [&](ParticleKind k) {
+      return std::find(kinds.begin(), kinds.end(), k) != kinds.end();
+    };
+    const bool fl = has(ParticleKind::kFluid);
+    if (fl != has(ParticleKind::kInlet) || fl != has(ParticleKind::kOutlet)) {
+      const Field where =
+          YamlReader::present(YamlReader::child(f, "kinds")) ? YamlReader::child(f, "kinds") : f;
+      ctx.reader.error(where,
+                       std::string(YamlReader::present(YamlReader::child(f, "kinds"))
+                                       ? ""
+                                       : "kinds: default [fluid]: ") +
+                           "with fluid.open_boundary particles change kind between fluid, inlet "
+                           "and outlet; allowed: all three of them or none (e.g. [fluid, "
+                           "inlet, outlet] or [wall])");
     }
   }
   return kinds;

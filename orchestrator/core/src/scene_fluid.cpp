@@ -2,16 +2,24 @@
 // Scene section "fluid": backend name and its parameters.
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <span>
+#include <string>
 
 #include "scene_parts.hpp"
 
 namespace sadr::orchestrator::detail {
 
 namespace {
-constexpr std::array<std::string_view, 14> kFluidKeys{
-    "backend",     "smoothing_length", "h_over_dx",       "kernel",    "reference_density",
-    "sound_speed", "shear_viscosity",  "temperature",     "gravity",   "density_mode",
-    "boussinesq",  "max_time_step",    "force_time_step", "parameters"};
+constexpr std::array<std::string_view, 15> kFluidKeys{
+    "backend",     "smoothing_length", "h_over_dx",       "kernel",     "reference_density",
+    "sound_speed", "shear_viscosity",  "temperature",     "gravity",    "density_mode",
+    "boussinesq",  "max_time_step",    "force_time_step", "parameters", "open_boundary"};
+constexpr std::array<std::string_view, 8> kOpenKeys{
+    "axis", "inlet", "outlet", "profile", "mean_velocity", "max_velocity", "walls", "cross_axis"};
+constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
+constexpr std::array<std::string_view, 2> kProfiles{"uniform", "parabolic"};
+constexpr std::string_view kOpenPrefix = "open_boundary.";
 constexpr std::array<std::string_view, 3> kBackends{"sdpd", "static", "tdpd"};
 constexpr std::array<std::string_view, 1> kKernels{"lucy"};
 constexpr std::array<std::string_view, 2> kDensityModes{"continuity", "summation"};
@@ -46,7 +54,166 @@ void read_boussinesq(SceneContext& ctx, const Field& fluid) {
   ctx.boussinesq = b;
 }
 
+/// A number for messages (as a scene would write it, not 17 digits).
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+
+int axis_index(std::string_view name) {
+  return name == "x" ? 0 : name == "y" ? 1 : 2;
+}
+
+/// fluid.open_boundary -> parameters["open_boundary.*"] (model_convert.cpp in fluid_service
+/// reads them back into FluidModel::OpenBoundary).
+void read_open_boundary(SceneContext& ctx, const Field& fluid, bool sdpd) {
+  YamlReader& r = ctx.reader;
+  const Field ob = YamlReader::child(fluid, "open_boundary");
+  if (!YamlReader::present(ob) || !r.expect_map(ob, kOpenKeys)) return;
+  ctx.open_boundary = ob;
+  const auto backend = ctx.scene.fluid.backend;
+  if (!sdpd) {
+    r.error(ob, std::string("backend '") + backend +
+                    "' has no open boundaries; allowed: backend sdpd (or remove open_boundary)");
+  }
+  if (!ctx.dimension_ok) return;
+  const int d = ctx.scene.box.dimension;
+  auto& p = ctx.scene.fluid.parameters;
+  const std::span<const std::string_view> axes(kAxes.data(), static_cast<std::size_t>(d));
+  int axis = 0;
+  if (auto a = r.choice(ob, "axis", axes, false, "axis")) axis = axis_index(*a);
+  if (ctx.geometry_ok && ctx.scene.box.periodic[static_cast<std::size_t>(axis)]) {
+    r.error(YamlReader::child(ob, "axis"),
+            "box.periodic is true along the flow axis; allowed: a "
+            "walled (non-periodic) axis");
+  }
+  p[std::string(kOpenPrefix) + "axis"] = axis;
+  const auto in = r.vector(ob, "inlet", 2, "length", true);
+  const auto out = r.vector(ob, "outlet", 2, "length", true);
+  if (in && out) {
+    const double lo = ctx.scene.box.lo[static_cast<std::size_t>(axis)];
+    const double hi = ctx.scene.box.hi[static_cast<std::size_t>(axis)];
+    if (!((*in)[0] < (*in)[1] && (*in)[1] < (*out)[0] && (*out)[0] < (*out)[1])) {
+      r.error(YamlReader::child(ob, "outlet"),
+              std::string("inlet [") + num((*in)[0]) + ", " + num((*in)[1]) + "], outlet [" +
+                  num((*out)[0]) + ", " + num((*out)[1]) +
+                  "]; allowed: inlet = [x0 - Lb, x0], outlet = [x1, x1 + Lb'] with x0 < x1 (the "
+                  "fluid part [x0, x1] between them) and lengths > 0");
+    } else if (ctx.geometry_ok &&
+               ((*in)[0] < lo - ctx.tolerance() || (*out)[1] > hi + ctx.tolerance())) {
+      r.error(YamlReader::child(ob, "inlet"), std::string("the channel [") + num((*in)[0]) + ", " +
+                                                  num((*out)[1]) + "] leaves the box [" + num(lo) +
+                                                  ", " + num(hi) +
+                                                  "] along the flow axis; allowed: inside the box");
+    }
+    p[std::string(kOpenPrefix) + "inlet_lo"] = (*in)[0];
+    p[std::string(kOpenPrefix) + "fluid_lo"] = (*in)[1];
+    p[std::string(kOpenPrefix) + "fluid_hi"] = (*out)[0];
+    p[std::string(kOpenPrefix) + "outlet_hi"] = (*out)[1];
+  }
+  const std::string profile =
+      r.choice(ob, "profile", kProfiles, false, "profile").value_or("uniform");
+  const bool parabolic = profile == "parabolic";
+  p[std::string(kOpenPrefix) + "profile"] = parabolic ? 1.0 : 0.0;
+  const auto mean = r.number(ob, "mean_velocity", Bound::kPositive, "length/time", false);
+  const auto max = r.number(ob, "max_velocity", Bound::kPositive, "length/time", false);
+  const bool mean_given = YamlReader::present(YamlReader::child(ob, "mean_velocity"));
+  const bool max_given = YamlReader::present(YamlReader::child(ob, "max_velocity"));
+  if (mean_given && max_given) {
+    r.error(YamlReader::child(ob, "max_velocity"),
+            "give either mean_velocity or max_velocity, not both");
+  } else if (!mean_given && !max_given) {
+    r.error(YamlReader::child(ob, "mean_velocity"),
+            "missing; required: mean_velocity or max_velocity (a number > 0 [length/time])");
+  }
+  if (mean) p[std::string(kOpenPrefix) + "mean_velocity"] = *mean;
+  if (max && !mean_given)
+    p[std::string(kOpenPrefix) + "mean_velocity"] = parabolic ? *max / 1.5 : *max;
+  const Field walls = YamlReader::child(ob, "walls");
+  const Field cross = YamlReader::child(ob, "cross_axis");
+  if (!parabolic) {
+    if (YamlReader::present(walls)) r.error(walls, "applies to profile: parabolic only");
+    if (YamlReader::present(cross)) r.error(cross, "applies to profile: parabolic only");
+    return;
+  }
+  if (d == 1) {
+    r.error(YamlReader::child(ob, "profile"),
+            "'parabolic' needs a cross axis; allowed in 1D: uniform");
+    return;
+  }
+  int ca = axis == 0 ? 1 : 0;
+  if (auto c = r.choice(ob, "cross_axis", axes, false, "axis")) {
+    ca = axis_index(*c);
+    if (ca == axis) r.error(cross, "equals the flow axis; allowed: another active axis");
+  }
+  p[std::string(kOpenPrefix) + "cross_axis"] = ca;
+  if (auto w = r.vector(ob, "walls", 2, "length", true)) {
+    if (!((*w)[0] < (*w)[1])) {
+      r.error(walls, std::string("[") + num((*w)[0]) + ", " + num((*w)[1]) +
+                         "]; allowed: [lo, hi] with lo < hi (the no-slip planes where the "
+                         "parabola is zero)");
+    }
+    p[std::string(kOpenPrefix) + "wall_lo"] = (*w)[0];
+    p[std::string(kOpenPrefix) + "wall_hi"] = (*w)[1];
+  }
+}
+
 }  // namespace
+
+void check_open_boundary(SceneContext& ctx) {
+  if (!ctx.open_boundary || !ctx.particles_ok) return;
+  YamlReader& r = ctx.reader;
+  const Field ob = *ctx.open_boundary;
+  const auto& p = ctx.scene.fluid.parameters;
+  auto get = [&](const char* k) {
+    const auto it = p.find(std::string(kOpenPrefix) + k);
+    return it == p.end() ? std::optional<double>{} : std::optional<double>{it->second};
+  };
+  const auto in_lo = get("inlet_lo"), x0 = get("fluid_lo"), x1 = get("fluid_hi"),
+             out_hi = get("outlet_hi"), ax = get("axis");
+  if (!in_lo || !x0 || !x1 || !out_hi || !ax) return;
+  const double h = ctx.scene.fluid.smoothing_length;
+  if (h > 0 && *x0 - *in_lo < h * (1 - 1e-9)) {
+    r.error(YamlReader::child(ob, "inlet"),
+            std::string("length ") + num(*x0 - *in_lo) +
+                " is shorter than the kernel support h = " + num(h) +
+                "; allowed: a length >= h (fluid near the inlet needs a full "
+                "kernel of buffer particles)");
+  }
+  if (h > 0 && *out_hi - *x1 < h * (1 - 1e-9)) {
+    r.error(YamlReader::child(ob, "outlet"),
+            std::string("length ") + num(*out_hi - *x1) +
+                " is shorter than the kernel support h = " + num(h) + "; allowed: a length >= h");
+  }
+  const double dx = ctx.scene.lattice_spacing;
+  if (dx > 0) {  // the inlet conveyor's slots repeat with the inlet length
+    const double k = (*x0 - *in_lo) / dx;
+    if (std::fabs(k - std::round(k)) > 1e-6 * std::max(1.0, k)) {
+      r.error(YamlReader::child(ob, "inlet"),
+              std::string("length ") + num(*x0 - *in_lo) + " is not a whole number of " +
+                  "particles.spacing = " + num(dx) +
+                  "; allowed: k * spacing (the inlet's k lattice columns are the slots of the "
+                  "inflow conveyor)");
+    }
+  }
+  const auto& s = ctx.scene.particles;
+  const auto a = static_cast<std::size_t>(*ax);
+  const double tol = ctx.tolerance();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s.kind(i) == ParticleKind::kWall) continue;
+    const double xa = s.positions[3 * i + a];
+    if (xa < *in_lo - tol || xa > *out_hi + tol) {
+      r.error(YamlReader::child(ob, "inlet"),
+              std::string("particle ") + std::to_string(i) + " (kind " +
+                  std::string(to_string(s.kind(i))) + ") at " + num(xa) +
+                  " along the flow axis lies outside the channel [" + num(*in_lo) + ", " +
+                  num(*out_hi) +
+                  "]; allowed: only wall particles outside the inlet and outlet buffers");
+      return;
+    }
+  }
+}
 
 void read_fluid(SceneContext& ctx, const Field& root) {
   YamlReader& r = ctx.reader;
@@ -98,11 +265,17 @@ void read_fluid(SceneContext& ctx, const Field& root) {
     } else {
       for (const auto& kv : params.node) {
         const std::string key = kv.first.Scalar();
+        if (key.rfind(kOpenPrefix, 0) == 0) {
+          r.error(YamlReader::child(params, key),
+                  "reserved name; allowed: the map fluid.open_boundary (docs/scene-format.md)");
+          continue;
+        }
         if (auto v = r.number(params, key, Bound::kAny, "", true)) fl.parameters[key] = *v;
       }
     }
   }
   read_boussinesq(ctx, f);
+  read_open_boundary(ctx, f, sdpd);
 }
 
 }  // namespace sadr::orchestrator::detail

@@ -141,6 +141,7 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   read_fluid(ctx, root);
   read_regions(ctx, root);
   read_particles(ctx, root);
+  check_open_boundary(ctx);
   read_species(ctx, root);
   read_reactions(ctx, root);
   read_time_and_output(ctx, root);

@@ -15,14 +15,15 @@ namespace sadr::orchestrator::detail {
 struct SceneContext {
   YamlReader& reader;
   Scene& scene;
-  std::filesystem::path base_dir{};   ///< directory of the scene file (for relative paths)
-  bool dimension_ok = false;          ///< `dimension` valid (vectors have that length)
-  bool geometry_ok = false;           ///< dimension and box valid
-  bool particles_ok = false;          ///< particles built and regions resolved
-  std::optional<double> h_over_dx{};  ///< fluid.h_over_dx, resolved once dx is known
-  Region all_region{};                ///< the built-in region "all" (every particle)
-  std::string particle_file_bytes{};  ///< the particle CSV file, folded into the scene hash
-  std::optional<Field> boussinesq{};  ///< fluid.boussinesq, checked once species are known
+  std::filesystem::path base_dir{};      ///< directory of the scene file (for relative paths)
+  bool dimension_ok = false;             ///< `dimension` valid (vectors have that length)
+  bool geometry_ok = false;              ///< dimension and box valid
+  bool particles_ok = false;             ///< particles built and regions resolved
+  std::optional<double> h_over_dx{};     ///< fluid.h_over_dx, resolved once dx is known
+  Region all_region{};                   ///< the built-in region "all" (every particle)
+  std::string particle_file_bytes{};     ///< the particle CSV file, folded into the scene hash
+  std::optional<Field> boussinesq{};     ///< fluid.boussinesq, checked once species are known
+  std::optional<Field> open_boundary{};  ///< fluid.open_boundary, checked once h is known
   /// Absolute tolerance for region and box membership [length].
   [[nodiscard]] double tolerance() const;
 };
@@ -32,6 +33,8 @@ inline constexpr std::string_view kAllRegion = "all";
 void read_regions(SceneContext& ctx, const Field& root);
 void read_particles(SceneContext& ctx, const Field& root);
 void read_fluid(SceneContext& ctx, const Field& root);
+/// fluid.open_boundary against h and the particles (after read_particles).
+void check_open_boundary(SceneContext& ctx);
 void read_species(SceneContext& ctx, const Field& root);
 void read_reactions(SceneContext& ctx, const Field& root);
 void read_time_and_output(SceneContext& ctx, const Field& root);

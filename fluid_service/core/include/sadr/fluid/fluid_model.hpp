@@ -101,6 +101,30 @@ enum class NoiseDistribution {
   kUniform,   ///< zero-mean unit-variance uniform increments (same covariance; weak order 1)
 };
 
+/// Open (non-periodic) inflow/outflow along one axis (SDPD backend; docs/fluid-core.md 2).
+/// Along `axis`: inlet buffer [inlet_lo, fluid_lo), fluid [fluid_lo, fluid_hi), outlet buffer
+/// [fluid_hi, outlet_hi]. Non-wall particles change kind by position after every sub-step
+/// (inlet -> fluid -> outlet -> recycled inlet, shifted by -(outlet_hi - inlet_lo)); N is fixed.
+struct OpenBoundary {
+  enum class Profile { kUniform, kParabolic };
+  bool enabled = false;
+  int axis = 0;  ///< flow axis (0, 1, 2), walled in the box
+  double inlet_lo = 0, fluid_lo = 0, fluid_hi = 0, outlet_hi = 0;  ///< [length]
+  Profile profile = Profile::kUniform;
+  double mean_velocity = 0;  ///< mean inflow speed U along +axis [length/time]
+  /// kParabolic: u(s) = 6 U (s - wall_lo)(wall_hi - s)/(wall_hi - wall_lo)^2 on the cross axis
+  /// (zero at the no-slip planes wall_lo, wall_hi, 0 outside; maximum 1.5 U).
+  int cross_axis = 1;
+  double wall_lo = 0, wall_hi = 0;  ///< [length]
+  /// Inflow velocity component along `axis` at a position [length/time].
+  [[nodiscard]] double inflow_speed(const double* x) const {
+    if (profile == Profile::kUniform) return mean_velocity;
+    const double s = x[cross_axis], w = wall_hi - wall_lo;
+    if (!(s > wall_lo && s < wall_hi)) return 0.0;
+    return 6.0 * mean_velocity * (s - wall_lo) * (wall_hi - s) / (w * w);
+  }
+};
+
 /// The scene. validate() reports every problem at once.
 struct FluidModel {
   Box box{};
@@ -136,6 +160,7 @@ struct FluidModel {
   /// backend rejects keys it does not know, naming them (sdpd and static take none).
   std::map<std::string, double> backend_parameters;
   std::vector<WallRegion> wall_regions;
+  OpenBoundary open_boundary{};
 
   /// Throws InvalidArgument naming every offending field with value and allowed range.
   void validate() const;
