@@ -4,6 +4,7 @@
 // against an exact law whose rate changes between coupling steps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -66,6 +67,65 @@ TEST(Rescale, BirthRateChangingWithTheVoxelVolumeGivesPoissonCounts) {
     EXPECT_LE(std::abs(z_var), zs) << "step " << checkpoints[c] << " var " << mom[c].var();
     worst = std::max({worst, std::abs(z_mean), std::abs(z_var)});
   }
+  RecordProperty("max_abs_z", std::to_string(worst));
+}
+
+// Diffusion on a moving graph: two voxels whose distance alternates between 0.3 h
+// and 0.8 h every step (jump rate k(t) switching by ~12x). Each of the N molecules
+// then sits in voxel 0 with probability p(t) = 1/2 + 1/2 exp(-2 int_0^t k), independently,
+// so X_0(t) ~ Bin(N, p(t)) exactly; k per step is read from the rebuilt graph.
+// Comparison points: 5 checkpoints x (mean, variance) = 10; family-wise 1e-4; R = 4000.
+TEST(Rescale, TwoVoxelDiffusionOnAMovingGraphGivesTheBinomialLaw) {
+  const double h = 1.0, tau = 0.05;
+  Model m = testing::diffusion_model(testing::make_box(1, 4.0, false), h, 1.0);
+  const std::vector<int> checkpoints = {1, 2, 5, 10, 21};
+  const std::int64_t n_mol = 20;
+  const int r_count = 4000;
+  const double zs = testing::z_star(1e-4, 10);
+  auto gap_of_step = [](int k) { return k % 2 == 1 ? 0.3 : 0.8; };
+  // kappa such that the near position gives k tau = 0.5 (read from a graph at 0.3 h).
+  ParticleState p = testing::make_lattice(1, 2, 1.0);
+  p.positions[0] = 1.0;
+  p.positions[3] = 1.0 + 0.3 * h;
+  const double w_near = DiffusionGraph::build(m, p).edges[0].weight;
+  m.species[0].diffusivity = 0.5 / (tau * w_near);
+  std::vector<double> k_of_step(22, 0.0);
+  std::vector<Moments> mom(checkpoints.size());
+  for (int r = 0; r < r_count; ++r) {
+    NsmSolver s(m, rng::mix_seed(31, static_cast<std::uint64_t>(r)));
+    std::size_t c = 0;
+    for (int k = 1; k <= 21; ++k) {
+      p.positions[3] = 1.0 + gap_of_step(k) * h;
+      s.update_graph(p);
+      if (k == 1) s.set_counts(0, std::vector<std::int64_t>{n_mol, 0});
+      if (r == 0) {
+        const DiffusionGraph& g = s.graph();
+        ASSERT_EQ(g.edge_count(), 2u);
+        ASSERT_EQ(g.edges[0].weight, g.edges[1].weight);  // equal masses and densities
+        k_of_step[k] = m.species[0].diffusivity * g.edges[0].weight;
+      }
+      s.advance(k * tau);
+      if (c < checkpoints.size() && k == checkpoints[c]) {
+        mom[c++].add(static_cast<double>(s.counts(0)[0]));
+      }
+    }
+  }
+  double worst = 0, integral = 0;
+  std::size_t c = 0;
+  for (int k = 1; k <= 21 && c < checkpoints.size(); ++k) {
+    integral += k_of_step[k] * tau;
+    if (k != checkpoints[c]) continue;
+    const double prob = 0.5 + 0.5 * std::exp(-2.0 * integral);
+    const double mean = n_mol * prob, var = n_mol * prob * (1 - prob);
+    const double z_mean = (mom[c].mean() - mean) / std::sqrt(var / r_count);
+    const double z_var =
+        testing::variance_z(mom[c].var(), var, testing::binomial_mu4(n_mol, prob), r_count);
+    EXPECT_LE(std::abs(z_mean), zs) << "step " << k << " mean " << mom[c].mean() << " vs " << mean;
+    EXPECT_LE(std::abs(z_var), zs) << "step " << k << " var " << mom[c].var() << " vs " << var;
+    worst = std::max({worst, std::abs(z_mean), std::abs(z_var)});
+    ++c;
+  }
+  EXPECT_EQ(c, checkpoints.size());
   RecordProperty("max_abs_z", std::to_string(worst));
 }
 
