@@ -192,6 +192,29 @@ TEST(OrchestratorCli, RunHalfThenResumeEqualsFullRun) {
   if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
 }
 
+TEST(OrchestratorCli, TwoRunsOfOneSceneWriteByteIdenticalCheckpoints) {
+  const fs::path d = scratch("ckpt_bytes");
+  std::string text = moving_scene();  // both services, each blob with a metadata map
+  text.replace(text.find("formats: [csv]}"), 15, "formats: [csv], checkpoint_every: 0.25}");
+  const fs::path scene = write_scene(d, text);
+  const std::string sadr = bin("sadr") + " ";
+  for (const char* out : {"a", "b"}) {
+    ASSERT_EQ(run(sadr + "run " + scene.string() + " -q -o " + (d / out).string(), d / "log"), 0)
+        << read_file(d / "log");
+  }
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(d / "a" / "checkpoint")) {
+    if (e.path().filename() != "checkpoint.json") names.push_back(e.path().filename().string());
+  }
+  ASSERT_EQ(names.size(), 2u);  // fluid and ssa blobs (names carry the content hash)
+  for (const auto& name : names) {
+    ASSERT_TRUE(fs::exists(d / "b" / "checkpoint" / name)) << name;
+    EXPECT_EQ(read_file(d / "a" / "checkpoint" / name), read_file(d / "b" / "checkpoint" / name))
+        << name;
+  }
+  if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
+}
+
 TEST(OrchestratorCli, KilledSsaServiceIsNamedAndTheCheckpointSurvives) {
   const fs::path d = scratch("kill");
   // Long enough that we can kill it mid-run; checkpoints every 0.05.

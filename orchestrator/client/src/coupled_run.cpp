@@ -12,6 +12,10 @@
 #include <optional>
 #include <thread>
 
+#include <google/protobuf/io/coded_stream.h>
+#include <google/protobuf/io/zero_copy_stream_impl_lite.h>
+#include <google/protobuf/message.h>
+
 #include "sadr/common/log.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
 #include "sadr/orchestrator/progress.hpp"
@@ -104,6 +108,19 @@ class Worker {
   std::exception_ptr error_;
   std::thread thread_;  // last: started after the members it uses
 };
+
+/// The message's bytes with map entries in key order (protobuf's default order of
+/// map fields varies between runs): equal states give byte-identical checkpoint blobs.
+std::string deterministic_bytes(const google::protobuf::Message& message) {
+  std::string out;
+  {
+    google::protobuf::io::StringOutputStream stream(&out);
+    google::protobuf::io::CodedOutputStream coded(&stream);
+    coded.SetSerializationDeterministic(true);
+    message.SerializeToCodedStream(&coded);
+  }
+  return out;
+}
 
 std::string frame_name(std::size_t index, const char* ext) {
   char buf[64];
@@ -526,10 +543,11 @@ class CoupledRun {
     m.step_index = step_;
     m.time = t_;
     std::map<std::string, ServiceBlob> blobs;
-    if (fluid_)
+    if (fluid_) {
       blobs["fluid"] =
-          ServiceBlob{scene_.fluid.backend, fluid_->snapshot(step_).SerializeAsString()};
-    if (ssa_) blobs["ssa"] = ServiceBlob{"nsm", ssa_->snapshot(step_).SerializeAsString()};
+          ServiceBlob{scene_.fluid.backend, deterministic_bytes(fluid_->snapshot(step_))};
+    }
+    if (ssa_) blobs["ssa"] = ServiceBlob{"nsm", deterministic_bytes(ssa_->snapshot(step_))};
     const auto dir = options_.output_dir / "checkpoint";
     write_checkpoint(dir, m, blobs);
     log::debug("checkpoint at t = ", t_, " (step ", step_, ")");
