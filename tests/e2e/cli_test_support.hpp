@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "sadr/orchestrator/service_process.hpp"
+
 namespace sadr::e2e {
 namespace fs = std::filesystem;
 
@@ -105,6 +107,18 @@ inline CsvFrame read_csv(const fs::path& p) {
     }
   }
   return f;
+}
+
+/// Runs `sadr_run` (ending in options) against fluid_service and ssa_service
+/// started here on tcp loopback (remote mode), output in `out`, log in out.log.
+inline int run_with_tcp_services(const std::string& sadr_run, const fs::path& out) {
+  orchestrator::ServiceProcess ssa(bin("ssa_service"), {"--endpoint", "tcp://127.0.0.1:*"},
+                                   "ssa_service");
+  orchestrator::ServiceProcess fluid(bin("fluid_service"), {"--endpoint", "tcp://127.0.0.1:*"},
+                                     "fluid_service");
+  return run(
+      sadr_run + "--ssa " + ssa.endpoint() + " --fluid " + fluid.endpoint() + " -o " + out.string(),
+      fs::path(out.string() + ".log"));
 }
 
 }  // namespace sadr::e2e

@@ -63,16 +63,6 @@ std::string annihilation_scene(double end, const std::string& outputs, double ch
   return s.str();
 }
 
-/// Runs `sadr_run` (ending in options) against fluid_service and ssa_service
-/// started here on tcp loopback (remote mode), output in `out`, log in out.log.
-int run_with_tcp_services(const std::string& sadr_run, const fs::path& out) {
-  ServiceProcess ssa(bin("ssa_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "ssa_service");
-  ServiceProcess fluid(bin("fluid_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "fluid_service");
-  return run(
-      sadr_run + "--ssa " + ssa.endpoint() + " --fluid " + fluid.endpoint() + " -o " + out.string(),
-      fs::path(out.string() + ".log"));
-}
-
 TEST(OrchestratorCli, ProcessesEmbeddedAndRemoteGiveIdenticalFrames) {
   const fs::path d = scratch("modes");
   const fs::path scene = write_scene(d, annihilation_scene(0.3, "[0.1, 0.2, 0.3]", 0));

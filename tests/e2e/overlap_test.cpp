@@ -80,15 +80,6 @@ void expect_same_checkpoint(const fs::path& a, const fs::path& b) {
   }
 }
 
-/// Runs against services started here on tcp loopback (remote mode).
-int run_with_tcp_services(const std::string& sadr_run, const fs::path& out) {
-  ServiceProcess ssa(bin("ssa_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "ssa_service");
-  ServiceProcess fluid(bin("fluid_service"), {"--endpoint", "tcp://127.0.0.1:*"}, "fluid_service");
-  return run(
-      sadr_run + "--ssa " + ssa.endpoint() + " --fluid " + fluid.endpoint() + " -o " + out.string(),
-      fs::path(out.string() + ".log"));
-}
-
 TEST(Overlap, OverlappedAndSequentialLoopsGiveIdenticalFramesAndCheckpointsInAllModes) {
   const fs::path d = scratch("overlap-modes");
   const fs::path scene = write_scene(d, moving_scene());

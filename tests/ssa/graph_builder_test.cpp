@@ -252,7 +252,7 @@ TEST(GraphBuilder, InvalidParticleOnTheThreadedRebuildThrowsAndLeavesTheGraph) {
   DiffusionGraph g;
   b.build(g, m, c.p);
   c.move(0.002 * h, len);  // well inside the skin: no search
-  b.build(g, m, c.p);  // the candidate list is reused: the threaded path
+  b.build(g, m, c.p);      // the candidate list is reused: the threaded path
   const DiffusionGraph before = g;
   const std::uint64_t searches = b.searches();
   ParticleState bad = c.p;

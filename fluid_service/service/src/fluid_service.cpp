@@ -10,29 +10,13 @@
 #endif
 
 #include "sadr/common/log.hpp"
+#include "sadr/common/openmp_env.hpp"
 #include "sadr/fluid/builtin_backends.hpp"
 #include "sadr/wire/convert.hpp"
 
 namespace sadr::fluid {
 namespace {
 constexpr std::uint32_t kSnapshotVersion = 1;  // of the envelope; the blob has its own
-
-/// Threads of this service's OpenMP loops from SADR_FLUID_THREADS (0 = unset: OpenMP's
-/// default, OMP_NUM_THREADS or all cores). Lets the orchestrator's
-/// --fluid-threads give the fluid and the SSA different counts although both
-/// inherit one environment (and, embedded, share one process).
-int threads_from_env() {
-  const char* v = std::getenv("SADR_FLUID_THREADS");
-  if (v == nullptr || *v == '\0') return 0;
-  char* end = nullptr;
-  const long n = std::strtol(v, &end, 10);
-  if (*end != '\0' || n < 1 || n > 4096) {
-    throw InvalidArgument(
-        std::string("SADR_FLUID_THREADS = '") + v + "' (allowed: 1..4096, or unset)",
-        {{"field", "SADR_FLUID_THREADS"}, {"value", v}});
-  }
-  return static_cast<int>(n);
-}
 
 /// Applies the thread count to the calling (serving) thread: an OpenMP ICV of
 /// that thread, so embedded services in one process keep their own counts.
@@ -45,7 +29,8 @@ void apply_threads(int threads) {
 }
 }  // namespace
 
-FluidServiceHandler::FluidServiceHandler() : threads_(threads_from_env()) {
+FluidServiceHandler::FluidServiceHandler()
+    : threads_(service_threads_from_env("SADR_FLUID_THREADS")) {
   register_builtin_backends(registry_);
 }
 FluidServiceHandler::~FluidServiceHandler() = default;

@@ -10,6 +10,7 @@
 #endif
 
 #include "sadr/common/log.hpp"
+#include "sadr/common/openmp_env.hpp"
 #include "sadr/ssa/inflow.hpp"
 #include "sadr/ssa/nsm_solver.hpp"
 #include "sadr/wire/convert.hpp"
@@ -30,23 +31,6 @@ int find_species(const std::vector<std::string>& names, const std::string& name,
                         "' (known: " + (known.empty() ? "none" : known) + ")");
 }
 
-/// Threads of this service's OpenMP loops from SADR_SSA_THREADS (0 = unset: OpenMP's
-/// default, OMP_NUM_THREADS or all cores). Lets the orchestrator's
-/// --ssa-threads give the fluid and the SSA different counts although both
-/// inherit one environment (and, embedded, share one process).
-int threads_from_env() {
-  const char* v = std::getenv("SADR_SSA_THREADS");
-  if (v == nullptr || *v == '\0') return 0;
-  char* end = nullptr;
-  const long n = std::strtol(v, &end, 10);
-  if (*end != '\0' || n < 1 || n > 4096) {
-    throw InvalidArgument(
-        std::string("SADR_SSA_THREADS = '") + v + "' (allowed: 1..4096, or unset)",
-        {{"field", "SADR_SSA_THREADS"}, {"value", v}});
-  }
-  return static_cast<int>(n);
-}
-
 /// Applies the thread count to the calling (serving) thread: an OpenMP ICV of
 /// that thread, so embedded services in one process keep their own counts.
 void apply_threads(int threads) {
@@ -59,7 +43,7 @@ void apply_threads(int threads) {
 
 }  // namespace
 
-SsaServiceHandler::SsaServiceHandler() : threads_(threads_from_env()) {}
+SsaServiceHandler::SsaServiceHandler() : threads_(service_threads_from_env("SADR_SSA_THREADS")) {}
 SsaServiceHandler::~SsaServiceHandler() = default;
 
 NsmSolver& SsaServiceHandler::solver() const {

@@ -30,4 +30,12 @@ namespace sadr {
 /// re-exec failed, which is reported on stderr and otherwise harmless).
 void ensure_passive_openmp_wait(char** argv);
 
+/// A service's OpenMP thread count from the environment variable `name`
+/// (SADR_FLUID_THREADS, SADR_SSA_THREADS: set by the orchestrator's --fluid-threads /
+/// --ssa-threads, so the two services get different counts although both inherit one
+/// environment and, embedded, share one process). 0 if unset or empty (OpenMP's default:
+/// OMP_NUM_THREADS or all cores). Throws InvalidArgument naming the variable and the
+/// allowed range (1..4096) for anything else.
+int service_threads_from_env(const char* name);
+
 }  // namespace sadr
