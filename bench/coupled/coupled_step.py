@@ -22,9 +22,19 @@ included) and the exposed SSA + transfer share = `ssa_wait` / `coupling_loop`
 (`ssa_wait`: time the main thread spent on SSA stages outside a fluid call,
 i.e. the SSA time the overlap did not hide; sequential: the whole SSA stage).
 The breakdown table then uses the sequential run with the smallest wall time.
+
+Coupling step (--taus T ...): the per-step coupling cost (transfer, rebuild) is
+paid once per coupling step, the fluid once per sub-step, so the share depends
+on how many sub-steps the stability limits cut tau into (run.json
+`fluid_substeps` / steps, printed). kappa stays 5 (about one jump per molecule
+per 0.05) whatever tau. --fluid-only adds, interleaved with the other runs, the
+same scene without the species (no ssa_service): its wall ms per step is what
+the fluid alone costs, so coupled wall - fluid-only wall is the whole price of
+the SSA (NSM included) on this machine.
 Usage: coupled_step.py [--sadr build/release/bin/sadr] [--sizes 10000 100000] [--steps 20]
                        [--modes embedded processes] [--extra="--no-shared-memory"]
                        [--compare-overlap 3] [--extra="--fluid-threads 1 --ssa-threads 1"]
+                       [--taus 0.05 0.1 0.2] [--fluid-only]
 Writes bench/results/coupled_step.json and .md.
 """
 import argparse, hashlib, json, math, os, statistics, subprocess, sys, tempfile
@@ -40,9 +50,7 @@ fluid:
   sound_speed: 10.0
   shear_viscosity: 1.0
   temperature: 0.001
-species:
-  - {{name: A, diffusivity: {kappa}, initial: [{{region: all, count: 1}}]}}
-time: {{coupling_step: {tau}, end: {end}}}
+{species}time: {{coupling_step: {tau}, end: {end}}}
 output: {{times: [{end}], formats: [csv]}}
 seed: 1
 """
@@ -60,101 +68,133 @@ def main():
     ap.add_argument("--extra", default="", help="more sadr run options, e.g. --no-shared-memory")
     ap.add_argument("--compare-overlap", type=int, default=0, metavar="P",
                     help="P interleaved pairs --no-overlap / --overlap per size and mode")
+    ap.add_argument("--taus", type=float, nargs="+", default=[0.05],
+                    help="coupling steps (0.05: two SDPD sub-steps, acoustic limit just under 0.0375)")
+    ap.add_argument("--fluid-only", action="store_true",
+                    help="also run the scene without species (fluid alone), interleaved")
     a = ap.parse_args()
-    tau = 0.05  # two SDPD sub-steps: acoustic limit 0.25 (h/2) / c0 = 0.0375
-    kappa = 1.0 / (4 * tau)  # 2D: per-molecule jump rate ~ 4 kappa / dx^2 -> ~1 jump per step
+    kappa = 5.0  # 2D: per-molecule jump rate ~ 4 kappa / dx^2 -> ~1 jump per molecule per 0.05
+    species = f"species:\n  - {{name: A, diffusivity: {kappa}, initial: [{{region: all, count: 1}}]}}\n"
     rows = []
-    for n in a.sizes:
+    for n, tau, mode in [(n, t, m) for n in a.sizes for t in a.taus for m in a.modes]:
         L = int(round(math.sqrt(n)))
-        for mode in a.modes:
-            work = tempfile.mkdtemp(prefix="sadr-coupled-")
-            scene = os.path.join(work, "scene.yaml")
-            with open(scene, "w") as f:
-                f.write(SCENE.format(n=L * L, L=float(L), kappa=kappa, tau=tau, end=tau * a.steps))
-            def run(loop_flags):
-                cmd = [a.sadr, "run", scene, "-q", "-o", os.path.join(work, "out"), "--force"]
-                if mode == "embedded":
-                    cmd.append("--embedded")
-                cmd += a.extra.split() + loop_flags
-                subprocess.run(cmd, check=True, stderr=subprocess.DEVNULL)
-                with open(os.path.join(work, "out", "run.json")) as f:
-                    j = json.load(f)
-                frames = sorted(os.listdir(os.path.join(work, "out", "frames")))
-                with open(os.path.join(work, "out", "frames", frames[-1]), "rb") as f:
-                    digests.add(hashlib.sha256(f.read()).hexdigest())
-                return j["timings_s"], j.get("overlapped_steps", 0)
+        work = tempfile.mkdtemp(prefix="sadr-coupled-")
+        scene = os.path.join(work, "scene.yaml")
+        fluid_scene = os.path.join(work, "fluid_only.yaml")
+        for path, sp in ((scene, species), (fluid_scene, "")):
+            with open(path, "w") as f:
+                f.write(SCENE.format(n=L * L, L=float(L), species=sp, tau=tau, end=tau * a.steps))
+        fluid_walls = []
 
-            digests = set()  # of the last frame: every run must give the same bytes
+        def run_fluid_only():
+            cmd = [a.sadr, "run", fluid_scene, "-q", "-o", os.path.join(work, "fluid"), "--force"]
+            if mode == "embedded":
+                cmd.append("--embedded")
+            subprocess.run(cmd + a.extra.split(), check=True, stderr=subprocess.DEVNULL)
+            with open(os.path.join(work, "fluid", "run.json")) as f:
+                fluid_walls.append(1e3 * json.load(f)["timings_s"]["coupling_loop"] / a.steps)
 
-            overlap = None
-            if a.compare_overlap > 0:
-                runs = {"sequential": [], "overlapped": []}
-                for _ in range(a.compare_overlap):  # interleaved: seq, ovl, seq, ovl, ...
-                    runs["sequential"].append(run(["--no-overlap"]))
-                    runs["overlapped"].append(run(["--overlap"]))
-                overlap = {}
-                for loop, rs in runs.items():
-                    walls = [1e3 * t.get("coupling_loop", 0.0) / a.steps for t, _ in rs]
-                    shares = [t.get("ssa_wait", 0.0) / t["coupling_loop"] for t, _ in rs]
-                    overlap[loop] = {"wall_ms_per_step": walls, "wall_min": min(walls),
-                                     "wall_median": statistics.median(walls),
-                                     "exposed_ssa_transfer_share": shares,
-                                     "exposed_share_median": statistics.median(shares),
-                                     "overlapped_steps": rs[0][1]}
-                overlap["identical_frames"] = len(digests) == 1
-                if len(digests) != 1:
-                    print(f"WARNING: N={L*L} {mode}: the runs' last frames differ ({len(digests)} versions)",
-                          file=sys.stderr, flush=True)
-                best = min(runs["sequential"], key=lambda r: r[0].get("coupling_loop", 0.0))
-                t = best[0]
-            else:
-                t, _ = run([])
-            steps = a.steps
-            fluid = t.get("fluid_compute", 0.0)
-            graph = t.get("ssa_graph", 0.0)
-            nsm = t.get("ssa_nsm", 0.0)
-            transfer = t.get("transfer", 0.0) + (t.get("fluid", 0.0) - fluid) + (t.get("ssa", 0.0) - graph - nsm)
-            total = fluid + graph + nsm + transfer
-            row = {"particles": L * L, "mode": mode, "steps": steps,
-                   "ms_per_step": {k: 1e3 * v / steps for k, v in
-                                   {"fluid": fluid, "transfer": transfer, "graph_rebuild": graph, "nsm": nsm, "total": total}.items()},
-                   "transfer_plus_rebuild_share": (transfer + graph) / total}
-            if overlap:
-                row["overlap"] = overlap
-            rows.append(row)
-            m = row["ms_per_step"]
-            print(f"N={L*L:7d} {mode:9s}  fluid {m['fluid']:8.2f}  transfer {m['transfer']:7.2f}  rebuild {m['graph_rebuild']:7.2f}"
-                  f"  nsm {m['nsm']:7.2f}  total {m['total']:8.2f} ms/step   transfer+rebuild = {100*row['transfer_plus_rebuild_share']:.1f}%"
-                  f"  (target: embedded <= 5%, processes <= 15% at 1e4)", flush=True)
-            if overlap:
-                for loop, o in overlap.items():
-                    if loop == "identical_frames":
-                        continue
-                    print(f"    {loop:10s} wall ms/step min {o['wall_min']:8.2f} median {o['wall_median']:8.2f}"
-                          f"  exposed ssa+transfer {100*o['exposed_share_median']:.1f}%"
-                          f"  (overlapped steps {o['overlapped_steps']})", flush=True)
+        def run(loop_flags):
+            cmd = [a.sadr, "run", scene, "-q", "-o", os.path.join(work, "out"), "--force"]
+            if mode == "embedded":
+                cmd.append("--embedded")
+            cmd += a.extra.split() + loop_flags
+            subprocess.run(cmd, check=True, stderr=subprocess.DEVNULL)
+            with open(os.path.join(work, "out", "run.json")) as f:
+                j = json.load(f)
+            frames = sorted(os.listdir(os.path.join(work, "out", "frames")))
+            with open(os.path.join(work, "out", "frames", frames[-1]), "rb") as f:
+                digests.add(hashlib.sha256(f.read()).hexdigest())
+            substeps.append(j.get("fluid_substeps", 0) / a.steps)
+            return j["timings_s"], j.get("overlapped_steps", 0)
+
+        digests = set()  # of the last frame: every run must give the same bytes
+        substeps = []  # fluid sub-steps per coupling step, per run
+
+        overlap = None
+        if a.compare_overlap > 0:
+            runs = {"sequential": [], "overlapped": []}
+            for _ in range(a.compare_overlap):  # interleaved: seq, ovl, (fluid), seq, ...
+                runs["sequential"].append(run(["--no-overlap"]))
+                runs["overlapped"].append(run(["--overlap"]))
+                if a.fluid_only:
+                    run_fluid_only()
+            overlap = {}
+            for loop, rs in runs.items():
+                walls = [1e3 * t.get("coupling_loop", 0.0) / a.steps for t, _ in rs]
+                shares = [t.get("ssa_wait", 0.0) / t["coupling_loop"] for t, _ in rs]
+                overlap[loop] = {"wall_ms_per_step": walls, "wall_min": min(walls),
+                                 "wall_median": statistics.median(walls),
+                                 "exposed_ssa_transfer_share": shares,
+                                 "exposed_share_median": statistics.median(shares),
+                                 "overlapped_steps": rs[0][1]}
+            overlap["identical_frames"] = len(digests) == 1
+            if len(digests) != 1:
+                print(f"WARNING: N={L*L} {mode}: the runs' last frames differ ({len(digests)} versions)",
+                      file=sys.stderr, flush=True)
+            best = min(runs["sequential"], key=lambda r: r[0].get("coupling_loop", 0.0))
+            t = best[0]
+        else:
+            t, _ = run([])
+            if a.fluid_only:
+                run_fluid_only()
+        steps = a.steps
+        fluid = t.get("fluid_compute", 0.0)
+        graph = t.get("ssa_graph", 0.0)
+        nsm = t.get("ssa_nsm", 0.0)
+        transfer = t.get("transfer", 0.0) + (t.get("fluid", 0.0) - fluid) + (t.get("ssa", 0.0) - graph - nsm)
+        total = fluid + graph + nsm + transfer
+        row = {"particles": L * L, "tau": tau, "substeps_per_step": max(substeps), "mode": mode,
+               "steps": steps,
+               "ms_per_step": {k: 1e3 * v / steps for k, v in
+                               {"fluid": fluid, "transfer": transfer, "graph_rebuild": graph, "nsm": nsm, "total": total}.items()},
+               "transfer_plus_rebuild_share": (transfer + graph) / total}
+        if overlap:
+            row["overlap"] = overlap
+        if fluid_walls:
+            row["fluid_only_wall_ms_per_step"] = fluid_walls
+            row["fluid_only_wall_median"] = statistics.median(fluid_walls)
+        rows.append(row)
+        m = row["ms_per_step"]
+        print(f"N={L*L:7d} tau {tau:g} ({row['substeps_per_step']:g} sub-steps) {mode:9s}  fluid {m['fluid']:8.2f}  transfer {m['transfer']:7.2f}  rebuild {m['graph_rebuild']:7.2f}"
+              f"  nsm {m['nsm']:7.2f}  total {m['total']:8.2f} ms/step   transfer+rebuild = {100*row['transfer_plus_rebuild_share']:.1f}%"
+              f"  (target: embedded <= 5%, processes <= 15% at 1e4)", flush=True)
+        if overlap:
+            for loop, o in overlap.items():
+                if loop == "identical_frames":
+                    continue
+                print(f"    {loop:10s} wall ms/step min {o['wall_min']:8.2f} median {o['wall_median']:8.2f}"
+                      f"  exposed ssa+transfer {100*o['exposed_share_median']:.1f}%"
+                      f"  (overlapped steps {o['overlapped_steps']})", flush=True)
+        if fluid_walls:
+            print(f"    fluid only wall ms/step min {min(fluid_walls):8.2f} median {row['fluid_only_wall_median']:8.2f}",
+                  flush=True)
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, "coupled_step.json"), "w") as f:
         json.dump({"command": " ".join(sys.argv), "cores": os.cpu_count(), "rows": rows}, f, indent=2)
     with open(os.path.join(a.out, "coupled_step.md"), "w") as f:
         f.write(f"# Coupled step breakdown\n\nCommand: `{' '.join(sys.argv)}`\n\n")
-        f.write("| particles | mode | fluid ms | transfer ms | rebuild ms | NSM ms | total ms | transfer+rebuild |\n|---|---|---|---|---|---|---|---|\n")
+        f.write("| particles | tau (sub-steps) | mode | fluid ms | transfer ms | rebuild ms | NSM ms | total ms | transfer+rebuild |\n|---|---|---|---|---|---|---|---|---|\n")
         for r in rows:
             m = r["ms_per_step"]
-            f.write(f"| {r['particles']} | {r['mode']} | {m['fluid']:.2f} | {m['transfer']:.2f} | {m['graph_rebuild']:.2f} | {m['nsm']:.2f} | {m['total']:.2f} | {100*r['transfer_plus_rebuild_share']:.1f}% |\n")
+            f.write(f"| {r['particles']} | {r['tau']:g} ({r['substeps_per_step']:g}) | {r['mode']} | {m['fluid']:.2f} | {m['transfer']:.2f} | {m['graph_rebuild']:.2f} | {m['nsm']:.2f} | {m['total']:.2f} | {100*r['transfer_plus_rebuild_share']:.1f}% |\n")
         f.write("\nTargets (issue 5): transfer + rebuild <= 5% of the step embedded, <= 15% with processes, at 1e4 particles.\n")
         if any("overlap" in r for r in rows):
             f.write("\n## Sequential vs overlapped loop (interleaved pairs)\n\n"
                     "Wall ms per coupling step = run.json coupling_loop / steps; exposed = ssa_wait / coupling_loop "
                     "(SSA + transfer time not hidden behind the fluid).\n\n"
-                    "| particles | mode | loop | wall ms/step min | median | runs | exposed SSA+transfer (median) |\n"
-                    "|---|---|---|---|---|---|---|\n")
+                    "| particles | tau (sub-steps) | mode | loop | wall ms/step min | median | runs | exposed SSA+transfer (median) |\n"
+                    "|---|---|---|---|---|---|---|---|\n")
             for r in rows:
                 for loop, o in r.get("overlap", {}).items():
                     if loop == "identical_frames":
                         continue
-                    f.write(f"| {r['particles']} | {r['mode']} | {loop} | {o['wall_min']:.2f} | {o['wall_median']:.2f} | "
+                    f.write(f"| {r['particles']} | {r['tau']:g} ({r['substeps_per_step']:g}) | {r['mode']} | {loop} | {o['wall_min']:.2f} | {o['wall_median']:.2f} | "
                             f"{', '.join(f'{w:.2f}' for w in o['wall_ms_per_step'])} | {100*o['exposed_share_median']:.1f}% |\n")
+                if "fluid_only_wall_ms_per_step" in r:
+                    w = r["fluid_only_wall_ms_per_step"]
+                    f.write(f"| {r['particles']} | {r['tau']:g} ({r['substeps_per_step']:g}) | {r['mode']} | fluid only | "
+                            f"{min(w):.2f} | {statistics.median(w):.2f} | {', '.join(f'{x:.2f}' for x in w)} | - |\n")
 
 
 if __name__ == "__main__":

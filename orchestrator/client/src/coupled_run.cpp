@@ -329,6 +329,7 @@ class CoupledRun {
         if (req.return_state() && shm_) req.set_geometry_shm(shm_->name());
         auto rep = fluid_->advance(req);
         manifest_.timings_s["fluid_compute"] += rep.compute_seconds();
+        manifest_.fluid_substeps += rep.substeps();
         moved = rep.particles_moved() || moved;
         shm_generation = rep.geometry_generation();
         if (rep.has_particles()) {

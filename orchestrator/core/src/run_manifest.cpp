@@ -34,6 +34,7 @@ nlohmann::json RunManifest::to_json() const {
           {"status", status},
           {"steps", steps},
           {"overlapped_steps", overlapped_steps},
+          {"fluid_substeps", fluid_substeps},
           {"time", time},
           {"timings_s", timings_s},
           {"frames", frames},

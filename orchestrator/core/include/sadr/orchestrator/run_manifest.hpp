@@ -34,6 +34,9 @@ struct RunManifest {
   /// Coupling steps whose SSA stage ran while the fluid computed the next step
   /// (plan.overlap); the others ran their stages one after the other.
   std::uint64_t overlapped_steps = 0;
+  /// Fluid sub-steps taken by this invocation (a resumed run counts from the resume):
+  /// with `timings_s` and the steps done here, how many sub-steps a coupling step costs.
+  std::uint64_t fluid_substeps = 0;
   double time = 0.0;  ///< simulated time reached [time]
   /// Wall-clock seconds per part: "fluid" (fluid calls), "fluid_compute" (inside
   /// the service), "ssa" (SSA calls), "ssa_graph", "ssa_nsm" (inside the
