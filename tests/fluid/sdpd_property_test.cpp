@@ -122,10 +122,12 @@ TEST_P(SdpdDim, SpeciesMassConservedInPeriodicBox) {
 
 TEST_P(SdpdDim, ThreadCountDoesNotChangeResults) {
 #ifdef SADR_HAVE_OPENMP
-  // Above kMinParallel particles so that the loops really run threaded.
-  const int side = GetParam() == 3 ? 12 : GetParam() == 2 ? 40 : 2000;
+  // Above kMinParallel particles so that the pair loops really run threaded, and in 1D and
+  // 2D above kMinParallelLight so that the per-particle loops do too.
+  const int side = GetParam() == 3 ? 12 : GetParam() == 2 ? 130 : 17000;
   Scene s = noisy_box(GetParam(), 1.0, side);
-  ASSERT_GT(static_cast<std::int64_t>(s.state.size()), kMinParallel);
+  ASSERT_GT(static_cast<std::int64_t>(s.state.size()),
+            GetParam() == 3 ? kMinParallel : kMinParallelLight);
   auto run = [&](int threads) {
     omp_set_num_threads(threads);
     SdpdBackend b;

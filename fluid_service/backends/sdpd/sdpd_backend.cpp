@@ -179,7 +179,7 @@ void SdpdBackend::ensure_neighbors(const std::vector<double>& x) {
   if (!rebuild) {
     const auto ni = static_cast<std::int64_t>(x.size() / 3);
     int moved = 0;
-#pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(max : moved)
+#pragma omp parallel for schedule(static) if (ni > kMinParallelLight) reduction(max : moved)
     for (std::int64_t ii = 0; ii < ni; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       if (moved_since_build(i, &x[3 * i])) moved = 1;
@@ -196,9 +196,9 @@ StabilityLimits SdpdBackend::limits(const Y& y, const Rates& r) const {
   double vmax2 = 0, rho_min = std::numeric_limits<double>::infinity(), amax2 = 0;
   const auto& bq = model_.boussinesq;
   const auto ni = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(max             \
-                                                                           : vmax2, amax2) \
-    reduction(min                                                                          \
+#pragma omp parallel for schedule(static) if (ni > kMinParallelLight) reduction(max             \
+                                                                                : vmax2, amax2) \
+    reduction(min                                                                               \
               : rho_min)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -311,7 +311,7 @@ StepReport SdpdBackend::advance(std::uint64_t step_index, double time_step) {
     ytmp_.rho.resize(n);
     const bool continuity = model_.density_mode == DensityMode::kContinuity;
     const auto ni = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) if (ni > kMinParallel)
+#pragma omp parallel for schedule(static) if (ni > kMinParallelLight)
     for (std::int64_t ii = 0; ii < ni; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       for (int a = 0; a < 3; ++a) {
@@ -334,7 +334,7 @@ StepReport SdpdBackend::advance(std::uint64_t step_index, double time_step) {
     }
     evaluate(ytmp_, key, r1_, false);  // noise: the start-of-step force is reused
     // Corrector: Y = Y + dt/2 (f(Y) + f(Y~)), same noise increment.
-#pragma omp parallel for schedule(static) if (ni > kMinParallel)
+#pragma omp parallel for schedule(static) if (ni > kMinParallelLight)
     for (std::int64_t ii = 0; ii < ni; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       // (summation density: rho~ is recomputed at the next evaluation anyway)
@@ -542,7 +542,7 @@ void SdpdBackend::check_health(std::uint64_t step_index, std::uint32_t substep) 
   };
   const auto ni = static_cast<std::int64_t>(n);
   std::int64_t first = ni;
-#pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(min : first)
+#pragma omp parallel for schedule(static) if (ni > kMinParallelLight) reduction(min : first)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     if (bad(static_cast<std::size_t>(ii))) first = std::min(first, ii);
   }

@@ -510,7 +510,7 @@ void SdpdBackend::evaluate_half(const Y& y, std::uint64_t noise_step, Rates& out
   double* acc = out.acc.data();
   double* accn = noise_on ? out.acc_noise.data() : nullptr;
   double* drho = out.drho.data();
-#pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(max : max_visc)
+#pragma omp parallel for schedule(static) if (ni > kMinParallelLight) reduction(max : max_visc)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     half_rates<D>(i, y, noise_on, &acc[3 * i], noise_on ? &accn[3 * i] : nullptr, &drho[i],

@@ -119,7 +119,7 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
   if (half) {
     hin_.resize(n);
     hacc_.resize(n);
-#pragma omp parallel for schedule(static) if (ni > kMinParallel)
+#pragma omp parallel for schedule(static) if (ni > kMinParallelLight)
     for (std::int64_t ii = 0; ii < ni; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       fill_half_in(i, y, noise_on);
@@ -130,7 +130,7 @@ void SdpdBackend::evaluate_dim(Y& y, std::uint64_t noise_step, Rates& out, bool 
     inv_nd_.resize(n);
     vol_.resize(n);
     if (noise_on) sqrt_inv_nd_.resize(n);
-#pragma omp parallel for schedule(static) if (ni > kMinParallel)
+#pragma omp parallel for schedule(static) if (ni > kMinParallelLight)
     for (std::int64_t ii = 0; ii < ni; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       const double nd_inv = mass_[i] / y.rho[i];  // 1/d_i
@@ -331,7 +331,7 @@ void SdpdBackend::prepare_half(bool noise_on) {
   hacc_.resize(n);
   const bool have_list = list_ref_x_.size() == y_.x.size();
   int moved = have_list ? 0 : 1;
-#pragma omp parallel for schedule(static) if (ni > kMinParallel) reduction(max : moved)
+#pragma omp parallel for schedule(static) if (ni > kMinParallelLight) reduction(max : moved)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     fill_half_in(i, y_, noise_on);

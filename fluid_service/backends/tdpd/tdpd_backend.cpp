@@ -229,7 +229,7 @@ StepReport TdpdBackend::advance(std::uint64_t step_index, double time_step) {
       evaluate(x_, v_, c_, key, dt, f_new_, q_, /*flux_only=*/true);
       flux_stale_ = false;
     }
-#pragma omp parallel for schedule(static) if (n >= kMinParallel)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelLight)
     for (std::int64_t ii = 0; ii < n; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       if (wall_[i]) {
@@ -256,7 +256,7 @@ StepReport TdpdBackend::advance(std::uint64_t step_index, double time_step) {
     }
     if (buffers_.enabled()) buffers_.apply(x_, transported, c_);
     evaluate(x_, v_pred_, c_, key, dt, f_new_, q_new_);
-#pragma omp parallel for schedule(static) if (n >= kMinParallel)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelLight)
     for (std::int64_t ii = 0; ii < n; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       if (wall_[i]) continue;

@@ -235,7 +235,7 @@ void TdpdBackend::evaluate_dim(const std::vector<double>& x, const std::vector<d
   if (!flux_only) force.resize(3 * n);
   for (auto& q : flux) q.assign(n, 0.0);
   const auto& g = model_.gravity;
-#pragma omp parallel for schedule(static) if (ni >= kMinParallel)
+#pragma omp parallel for schedule(static) if (ni >= kMinParallelLight)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const bool wall = wall_[i] != 0;
