@@ -6,7 +6,7 @@
 /// prefactors). With passive waits (sadr's default) every parallel region wakes the team's
 /// sleeping threads, ~50-100 us on a VM whose idle vCPUs halt: the general SDPD sub-step has
 /// ~10 regions, and with all of them threaded from 1024 particles two threads were slower than
-/// one up to ~3000 particles (yeast_cell_channel, 1250 particles: 1.5x slower). The light loops
+/// one at 1300-1900 particles (yeast_cell_channel, 1553 particles: 1.3-1.5x). The light loops
 /// cost 10-40 ns per particle, so they only pay from ~1e4 particles; measured with them serial
 /// below 16384: 1.5-1.9x faster at 1250-1900 particles and 7 % at 10700 (general path), the
 /// fused bulk path unchanged (bench/results/README-fluid.md, round 6). Results never depend on
