@@ -2,11 +2,11 @@
 #include "sadr/orchestrator/ensemble_accumulator.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "sadr/common/status.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
+#include "sadr/orchestrator/frame_writers.hpp"
 
 namespace sadr::orchestrator {
 
@@ -109,19 +109,17 @@ void EnsembleAccumulator::write_csv(std::size_t frame, const std::filesystem::pa
     x.append(s).append("_mean,").append(s).append("_var");
   }
   x += '\n';
-  char buf[40];
   for (std::size_t i = 0; i < n_; ++i) {
-    std::snprintf(buf, sizeof buf, "%.17g", f.time);
-    x += buf;
+    append_number(x, f.time);
     x.push_back(',');
-    x.append(std::to_string(ids.size() == n_ ? ids[i] : i));
+    append_integer(x, ids.size() == n_ ? ids[i] : i);
     x.push_back(',');
-    x.append(std::to_string(f.count));
+    append_integer(x, f.count);
     for (std::size_t s = 0; s < species_.size(); ++s) {
-      std::snprintf(buf, sizeof buf, ",%.17g", mean(frame, s, i));
-      x += buf;
-      std::snprintf(buf, sizeof buf, ",%.17g", variance(frame, s, i));
-      x += buf;
+      x.push_back(',');
+      append_number(x, mean(frame, s, i));
+      x.push_back(',');
+      append_number(x, variance(frame, s, i));
     }
     x += '\n';
   }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/orchestrator/frame_writers.hpp"
 
-#include <cstdio>
+#include <charconv>
 #include <string>
 
 #include "sadr/common/status.hpp"
@@ -9,13 +9,19 @@
 
 namespace sadr::orchestrator {
 
-namespace {
-
 void append_number(std::string& out, double v) {
-  char buf[40];
-  const int n = std::snprintf(buf, sizeof buf, "%.17g", v);
-  out.append(buf, static_cast<std::size_t>(n));
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
 }
+
+void append_integer(std::string& out, std::uint64_t v) {
+  char buf[24];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+namespace {
 
 void check_columns(const ParticleState& p, std::span<const SpeciesColumn> species) {
   for (const auto& s : species) {
@@ -80,11 +86,17 @@ void point_sections(std::string& x, const ParticleState& p,
   const std::size_t n = p.size();
   x += "      <PointData Scalars=\"density\" Vectors=\"velocity\">\n";
   x += "        <DataArray type=\"UInt64\" Name=\"id\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < n; ++i) x += "          " + std::to_string(id_of(p, i)) + "\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    x += "          ";
+    append_integer(x, id_of(p, i));
+    x += '\n';
+  }
   x += "        </DataArray>\n";
   x += "        <DataArray type=\"UInt8\" Name=\"kind\" format=\"ascii\">\n";
   for (std::size_t i = 0; i < n; ++i) {
-    x += "          " + std::to_string(static_cast<int>(p.kind(i))) + "\n";
+    x += "          ";
+    append_integer(x, static_cast<std::uint64_t>(p.kind(i)));
+    x += '\n';
   }
   x += "        </DataArray>\n";
   float_array(x, "velocity", 3, n, [&](std::size_t i, int c) { return velocity(p, i, c); });
@@ -114,10 +126,18 @@ std::string header(const char* type, double time) {
 
 void connectivity(std::string& x, std::size_t n) {
   x += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < n; ++i) x += "          " + std::to_string(i) + "\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    x += "          ";
+    append_integer(x, i);
+    x += '\n';
+  }
   x += "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
        "format=\"ascii\">\n";
-  for (std::size_t i = 0; i < n; ++i) x += "          " + std::to_string(i + 1) + "\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    x += "          ";
+    append_integer(x, i + 1);
+    x += '\n';
+  }
   x += "        </DataArray>\n";
 }
 
@@ -166,9 +186,9 @@ void write_frame_csv(const std::filesystem::path& path, double time, const Parti
   for (std::size_t i = 0; i < p.size(); ++i) {
     append_number(x, time);
     x.push_back(',');
-    x.append(std::to_string(id_of(p, i)));
+    append_integer(x, id_of(p, i));
     x.push_back(',');
-    x.append(std::to_string(static_cast<int>(p.kind(i))));
+    append_integer(x, static_cast<std::uint64_t>(p.kind(i)));
     for (int a = 0; a < 3; ++a) {
       x += ',';
       append_number(x, p.positions[3 * i + static_cast<std::size_t>(a)]);

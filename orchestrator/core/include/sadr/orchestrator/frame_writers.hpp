@@ -15,6 +15,7 @@
 /// (kind as the integer code above; unused axes are 0).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -42,6 +43,13 @@ void write_vtp(const std::filesystem::path& path, double time, const ParticleSta
 /// Writes a CSV frame (header row, then one row per particle).
 void write_frame_csv(const std::filesystem::path& path, double time, const ParticleState& particles,
                      std::span<const SpeciesColumn> species);
+
+/// Appends the shortest decimal that reads back as exactly `v` (std::to_chars; "inf" /
+/// "nan" for non-finite values): round-trip exact like "%.17g", several times faster and
+/// shorter (0.3, not 0.29999999999999999). The number format of every frame and ensemble file.
+void append_number(std::string& out, double v);
+/// Appends `v` in decimal.
+void append_integer(std::string& out, std::uint64_t v);
 
 /// The CSV header for these species: "time,id,kind,x,y,z,vx,vy,vz,density,mass,A,B".
 std::string frame_csv_header(std::span<const SpeciesColumn> species);
