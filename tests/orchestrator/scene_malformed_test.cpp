@@ -151,6 +151,11 @@ const std::vector<MalformedCase>& cases() {
        "  end: 1.0\n",
        "  end: 1.0\noutput:\n  times: [0.5, 2.0]\n",
        {"scene.yaml:29:16: output.times[1]: 2 is after the end time 1"}},
+      {"unknown_vtk_encoding_suggests_binary",
+       "  end: 1.0\n",
+       "  end: 1.0\noutput:\n  vtk_encoding: binray\n",
+       {"scene.yaml:29:17: output.vtk_encoding: unknown VTK encoding 'binray'; did you mean "
+        "'binary'? (allowed: binary, ascii)"}},
       {"missing_time_section",
        "time:\n  coupling_step: 0.1\n  end: 1.0\n",
        "",

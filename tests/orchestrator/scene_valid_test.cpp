@@ -73,6 +73,13 @@ TEST(SceneValid, OutputTimesDefaultToStartAndEnd) {
   EXPECT_EQ(s.time.splitting, Splitting::kLie);
 }
 
+TEST(SceneValid, VtkEncodingDefaultsToBinaryAndTakesAscii) {
+  EXPECT_EQ(parse_scene(kBaseScene, "scene.yaml").output.vtk_encoding, VtkEncoding::kBinary);
+  const std::string text =
+      replace_once(kBaseScene, "  end: 1.0\n", "  end: 1.0\noutput: {vtk_encoding: ascii}\n");
+  EXPECT_EQ(parse_scene(text, "scene.yaml").output.vtk_encoding, VtkEncoding::kAscii);
+}
+
 TEST(SceneValid, OutputEveryIsExactMultiplesAndEnd) {
   const std::string text = replace_once(
       kBaseScene, "  end: 1.0\n", "  end: 1.0\noutput: {every: 0.3, include_initial: false}\n");

@@ -3,6 +3,7 @@
 // to exactly the values written.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +24,7 @@ namespace fs = std::filesystem;
 using test::data_array;
 using test::numbers;
 using test::parse_xml;
+using test::values;
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path d =
@@ -53,28 +55,46 @@ std::string slurp(const fs::path& p) {
   return read_file_bytes(p);
 }
 
-void check_point_data(const std::vector<test::XmlElement>& xml, const ParticleState& p,
+void check_point_data(const test::VtkDoc& d, const ParticleState& p,
                       const std::vector<SpeciesColumn>& sp) {
-  EXPECT_EQ(numbers(data_array(xml, "id")), (std::vector<double>{7, 8, 9}));
-  EXPECT_EQ(numbers(data_array(xml, "kind")), (std::vector<double>{0, 1, 3}));
-  EXPECT_EQ(numbers(data_array(xml, "velocity")), p.velocities);
-  EXPECT_EQ(data_array(xml, "velocity").attributes.at("NumberOfComponents"), "3");
-  EXPECT_EQ(numbers(data_array(xml, "density")), p.densities);
-  EXPECT_EQ(numbers(data_array(xml, "mass")), p.masses);
-  EXPECT_EQ(numbers(data_array(xml, "Points")), p.positions);  // bit-exact via %.17g
-  for (const auto& s : sp) EXPECT_EQ(numbers(data_array(xml, s.name)), s.values);
-  EXPECT_EQ(numbers(data_array(xml, "TimeValue")), std::vector<double>{0.7});
+  EXPECT_EQ(values(d, "id"), (std::vector<double>{7, 8, 9}));
+  EXPECT_EQ(values(d, "kind"), (std::vector<double>{0, 1, 3}));
+  EXPECT_EQ(values(d, "velocity"), p.velocities);
+  EXPECT_EQ(data_array(d.xml, "velocity").attributes.at("NumberOfComponents"), "3");
+  EXPECT_EQ(values(d, "density"), p.densities);
+  EXPECT_EQ(values(d, "mass"), p.masses);
+  EXPECT_EQ(values(d, "Points"), p.positions);  // bit-exact: raw bytes or shortest decimals
+  for (const auto& s : sp) EXPECT_EQ(values(d, s.name), s.values);
+  EXPECT_EQ(values(d, "TimeValue"), std::vector<double>{0.7});
 }
 
-TEST(Writers, VtuParsesBackBitExact) {
+/// Both encodings: binary arrays are all appended (raw data present), ASCII ones inline.
+void check_encoding(const test::VtkDoc& d, VtkEncoding enc) {
+  EXPECT_EQ(d.raw.empty(), enc == VtkEncoding::kAscii);
+  for (const auto& e : d.xml) {
+    if (e.name == "VTKFile") {
+      EXPECT_EQ(e.attributes.at("header_type"), "UInt64");
+      EXPECT_EQ(e.attributes.at("byte_order"),
+                std::endian::native == std::endian::big ? "BigEndian" : "LittleEndian");
+    }
+    if (e.name != "DataArray" || e.attributes.at("Name") == "TimeValue") continue;
+    EXPECT_EQ(e.attributes.at("format"), enc == VtkEncoding::kBinary ? "appended" : "ascii")
+        << e.attributes.at("Name");
+  }
+}
+
+class WritersEnc : public ::testing::TestWithParam<VtkEncoding> {};
+
+TEST_P(WritersEnc, VtuParsesBackBitExact) {
   const fs::path dir = fresh_dir("vtu");
   const auto p = sample_particles();
   const auto sp = sample_species();
-  write_vtu(dir / "f.vtu", 0.7, p, sp);
-  const auto xml = parse_xml(slurp(dir / "f.vtu"));
-  check_point_data(xml, p, sp);
+  write_vtu(dir / "f.vtu", 0.7, p, sp, GetParam());
+  const auto d = test::read_vtk(slurp(dir / "f.vtu"));
+  check_encoding(d, GetParam());
+  check_point_data(d, p, sp);
   bool piece = false;
-  for (const auto& e : xml) {
+  for (const auto& e : d.xml) {
     if (e.name == "Piece") {
       piece = true;
       EXPECT_EQ(e.attributes.at("NumberOfPoints"), "3");
@@ -85,29 +105,39 @@ TEST(Writers, VtuParsesBackBitExact) {
     }
   }
   EXPECT_TRUE(piece);
-  EXPECT_EQ(numbers(data_array(xml, "types")), (std::vector<double>{1, 1, 1}));  // VTK_VERTEX
-  EXPECT_EQ(numbers(data_array(xml, "connectivity")), (std::vector<double>{0, 1, 2}));
-  EXPECT_EQ(numbers(data_array(xml, "offsets")), (std::vector<double>{1, 2, 3}));
+  EXPECT_EQ(values(d, "types"), (std::vector<double>{1, 1, 1}));  // VTK_VERTEX
+  EXPECT_EQ(values(d, "connectivity"), (std::vector<double>{0, 1, 2}));
+  EXPECT_EQ(values(d, "offsets"), (std::vector<double>{1, 2, 3}));
   fs::remove_all(dir);
 }
 
-TEST(Writers, VtpParsesBack) {
+TEST_P(WritersEnc, VtpParsesBack) {
   const fs::path dir = fresh_dir("vtp");
   const auto p = sample_particles();
   const auto sp = sample_species();
-  write_vtp(dir / "f.vtp", 0.7, p, sp);
-  const auto xml = parse_xml(slurp(dir / "f.vtp"));
-  check_point_data(xml, p, sp);
+  write_vtp(dir / "f.vtp", 0.7, p, sp, GetParam());
+  const auto d = test::read_vtk(slurp(dir / "f.vtp"));
+  check_encoding(d, GetParam());
+  check_point_data(d, p, sp);
   bool verts = false;
-  for (const auto& e : xml) {
+  for (const auto& e : d.xml) {
     if (e.name == "Piece") {
       EXPECT_EQ(e.attributes.at("NumberOfVerts"), "3");
     }
     verts = verts || e.name == "Verts";
   }
   EXPECT_TRUE(verts);
+  EXPECT_EQ(values(d, "connectivity"), (std::vector<double>{0, 1, 2}));
   fs::remove_all(dir);
 }
+
+std::string encoding_name(const ::testing::TestParamInfo<VtkEncoding>& p) {
+  return p.param == VtkEncoding::kBinary ? "Binary" : "Ascii";
+}
+
+INSTANTIATE_TEST_SUITE_P(Encodings, WritersEnc,
+                         ::testing::Values(VtkEncoding::kBinary, VtkEncoding::kAscii),
+                         encoding_name);
 
 TEST(Writers, WrongSpeciesLengthIsRefused) {
   const fs::path dir = fresh_dir("bad");

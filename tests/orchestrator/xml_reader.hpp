@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 // A tiny XML reader for the writer tests: checks that tags are balanced and
 // extracts elements with their attributes and text. Enough for the VTK XML
-// files sadr writes (no CDATA, no comments, no entities in text).
+// files sadr writes (no CDATA, no comments, no entities in text), including
+// raw appended binary data (read_vtk, values).
 #pragma once
 
+#include <cstdint>
+#include <cstring>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -93,6 +96,68 @@ inline const XmlElement& data_array(const std::vector<XmlElement>& all, const st
       return e;
   }
   throw std::runtime_error("no DataArray named " + name);
+}
+
+/// A VTK XML file: its elements, and the raw appended data (the bytes after the '_' of
+/// <AppendedData encoding="raw">; empty for an ASCII file).
+struct VtkDoc {
+  std::vector<XmlElement> xml;
+  std::string raw;
+};
+
+inline VtkDoc read_vtk(const std::string& bytes) {
+  const std::string open_tag = "<AppendedData encoding=\"raw\">";
+  const std::size_t a = bytes.find(open_tag);
+  if (a == std::string::npos) return {parse_xml(bytes), {}};
+  const std::size_t underscore = bytes.find('_', a + open_tag.size());
+  const std::size_t close = bytes.rfind("</AppendedData>");
+  if (underscore == std::string::npos || close == std::string::npos || close < underscore)
+    throw std::runtime_error("malformed AppendedData");
+  // The raw block ends with the newline and indentation before </AppendedData>.
+  std::size_t end = close;
+  while (end > underscore + 1 && (bytes[end - 1] == ' ' || bytes[end - 1] == '\n')) --end;
+  VtkDoc d;
+  d.xml =
+      parse_xml(bytes.substr(0, a) + bytes.substr(close + std::string("</AppendedData>").size()));
+  d.raw = bytes.substr(underscore + 1, end - underscore - 1);
+  return d;
+}
+
+/// The values of the DataArray `name`, ASCII or appended raw (UInt64 block header;
+/// types UInt8, UInt64, Int64, Float64), as doubles.
+inline std::vector<double> values(const VtkDoc& d, const std::string& name) {
+  const XmlElement& e = data_array(d.xml, name);
+  if (e.attributes.count("format") && e.attributes.at("format") == "appended") {
+    const std::size_t off = std::stoull(e.attributes.at("offset"));
+    std::uint64_t bytes = 0;
+    if (off + sizeof bytes > d.raw.size()) throw std::runtime_error("offset past the data");
+    std::memcpy(&bytes, d.raw.data() + off, sizeof bytes);
+    const char* p = d.raw.data() + off + sizeof bytes;
+    if (off + sizeof bytes + bytes > d.raw.size()) throw std::runtime_error("block past the data");
+    const std::string type = e.attributes.at("type");
+    std::vector<double> out;
+    auto read = [&](auto zero) {
+      using T = decltype(zero);
+      if (bytes % sizeof(T) != 0) throw std::runtime_error("block size not a multiple");
+      for (std::size_t k = 0; k < bytes / sizeof(T); ++k) {
+        T v;
+        std::memcpy(&v, p + k * sizeof(T), sizeof(T));
+        out.push_back(static_cast<double>(v));
+      }
+    };
+    if (type == "Float64")
+      read(double{});
+    else if (type == "UInt64")
+      read(std::uint64_t{});
+    else if (type == "Int64")
+      read(std::int64_t{});
+    else if (type == "UInt8")
+      read(std::uint8_t{});
+    else
+      throw std::runtime_error("unexpected type " + type);
+    return out;
+  }
+  return numbers(e);
 }
 
 }  // namespace sadr::orchestrator::test

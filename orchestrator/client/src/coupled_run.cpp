@@ -492,10 +492,10 @@ class CoupledRun {
       const auto dir = options_.output_dir;
       switch (f) {
         case OutputFormat::kVtu:
-          write_vtu(dir / frame_name(index, "vtu"), t, state, columns);
+          write_vtu(dir / frame_name(index, "vtu"), t, state, columns, scene_.output.vtk_encoding);
           break;
         case OutputFormat::kVtp:
-          write_vtp(dir / frame_name(index, "vtp"), t, state, columns);
+          write_vtp(dir / frame_name(index, "vtp"), t, state, columns, scene_.output.vtk_encoding);
           break;
         case OutputFormat::kCsv:
           write_frame_csv(dir / frame_name(index, "csv"), t, state, columns);

@@ -12,8 +12,10 @@ namespace sadr::orchestrator::detail {
 namespace {
 constexpr std::array<std::string_view, 3> kTimeKeys{"coupling_step", "end", "splitting"};
 constexpr std::array<std::string_view, 2> kSplittings{"lie", "strang"};
-constexpr std::array<std::string_view, 7> kOutputKeys{
-    "directory", "every", "times", "include_initial", "formats", "species", "checkpoint_every"};
+constexpr std::array<std::string_view, 8> kOutputKeys{"directory",        "every",       "times",
+                                                      "include_initial",  "formats",     "species",
+                                                      "checkpoint_every", "vtk_encoding"};
+constexpr std::array<std::string_view, 2> kVtkEncodings{"binary", "ascii"};
 constexpr std::array<std::string_view, 3> kFormats{"vtu", "vtp", "csv"};
 
 /// Sorted output times in [0, end] with near-duplicates (closer than
@@ -123,6 +125,9 @@ void read_time_and_output(SceneContext& ctx, const Field& root) {
     }
     s.output.checkpoint_every =
         r.number_or(out, "checkpoint_every", 0.0, Bound::kNonNegative, "time");
+    if (auto enc = r.choice(out, "vtk_encoding", kVtkEncodings, false, "VTK encoding")) {
+      s.output.vtk_encoding = *enc == "ascii" ? VtkEncoding::kAscii : VtkEncoding::kBinary;
+    }
   } else {
     for (const auto& sp : s.species) s.output.species.push_back(sp.name);
   }

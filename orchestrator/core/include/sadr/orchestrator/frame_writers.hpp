@@ -2,14 +2,17 @@
 /// \file frame_writers.hpp
 /// Per-frame output written by hand (no VTK library): VTK XML UnstructuredGrid
 /// (.vtu, one VTK_VERTEX cell per particle) or PolyData (.vtp, one vertex per
-/// particle), and CSV. All numbers are ASCII with 17 significant digits
-/// ("%.17g"), so a frame reads back bit-identically. Files are written
-/// atomically (write_file_atomic): a crash never leaves a half-written frame.
+/// particle), and CSV. VTK arrays are raw binary appended data by default
+/// (VtkEncoding::kBinary: the values' own bytes, native byte order declared in the
+/// header, UInt64 block sizes) or ASCII; every ASCII number is the shortest decimal
+/// that reads back as exactly the same double (std::to_chars). Either way a frame
+/// reads back bit-identically. Files are written atomically (write_file_atomic): a
+/// crash never leaves a half-written frame.
 ///
 /// Point data in .vtu/.vtp: id (UInt64), kind (UInt8: 0 fluid, 1 wall,
 /// 2 inlet, 3 outlet), velocity (Float64 x3), density, mass, one Float64 array
 /// per species (copy numbers for stochastic species, concentrations for
-/// deterministic ones). The frame time is the field-data array TimeValue.
+/// deterministic ones). The frame time is the field-data array TimeValue (ASCII).
 ///
 /// CSV columns: time,id,kind,x,y,z,vx,vy,vz,density,mass,<species...>
 /// (kind as the integer code above; unused axes are 0).
@@ -25,6 +28,10 @@
 
 namespace sadr::orchestrator {
 
+/// How .vtu/.vtp frames store their arrays: raw binary appended data (as ParaView
+/// writes by default: compact and fast) or ASCII text (readable by eye and by scripts).
+enum class VtkEncoding { kBinary, kAscii };
+
 /// One named per-particle array (N values).
 struct SpeciesColumn {
   std::string name;
@@ -34,11 +41,11 @@ struct SpeciesColumn {
 /// Writes a .vtu frame. @param time simulated time of the frame [time]
 /// @throws sadr::InvalidArgument if a species column does not have N values.
 void write_vtu(const std::filesystem::path& path, double time, const ParticleState& particles,
-               std::span<const SpeciesColumn> species);
+               std::span<const SpeciesColumn> species, VtkEncoding encoding = VtkEncoding::kBinary);
 
 /// Writes a .vtp frame (PolyData with one vertex per particle).
 void write_vtp(const std::filesystem::path& path, double time, const ParticleState& particles,
-               std::span<const SpeciesColumn> species);
+               std::span<const SpeciesColumn> species, VtkEncoding encoding = VtkEncoding::kBinary);
 
 /// Writes a CSV frame (header row, then one row per particle).
 void write_frame_csv(const std::filesystem::path& path, double time, const ParticleState& particles,

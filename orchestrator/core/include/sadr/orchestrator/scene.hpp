@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/orchestrator/frame_writers.hpp"
 #include "sadr/orchestrator/region.hpp"
 
 namespace sadr::orchestrator {
@@ -120,6 +121,7 @@ struct OutputSettings {
   std::vector<OutputFormat> formats{OutputFormat::kVtu, OutputFormat::kCsv};
   std::vector<std::string> species;  ///< species written per frame (default all)
   double checkpoint_every = 0.0;     ///< simulated time between checkpoints; 0 = only on signal
+  VtkEncoding vtk_encoding = VtkEncoding::kBinary;  ///< .vtu/.vtp array storage
 };
 
 enum class JumpConvention { kSymmetric, kVolume };
