@@ -33,7 +33,7 @@ bool exists_in_dev_shm(const std::string& name) {
   return std::filesystem::exists("/dev/shm" + name);
 }
 
-TEST(SharedGeometry, WriteThenReadIsBitExactAndKeepsKindsAndIds) {
+TEST(SharedGeometry, WriteThenReadIsBitExactCarriesKindsAndKeepsIds) {
   SharedGeometry owner = SharedGeometry::create(300);
   ASSERT_TRUE(owner.valid());
   EXPECT_EQ(owner.capacity(), 300u);
@@ -41,7 +41,14 @@ TEST(SharedGeometry, WriteThenReadIsBitExactAndKeepsKindsAndIds) {
   SharedGeometry reader = SharedGeometry::open(owner.name(), "test.reader");
   const ParticleState previous = sample(257, 0.0);
   for (int step = 1; step <= 3; ++step) {
-    const ParticleState moved = sample(257, 0.01 * step);
+    ParticleState moved = sample(257, 0.01 * step);
+    // non-wall particles cycle fluid -> inlet -> outlet (an open boundary); walls stay
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      if (moved.kinds[i] == ParticleKind::kWall) continue;
+      constexpr ParticleKind kCycle[3] = {ParticleKind::kFluid, ParticleKind::kInlet,
+                                          ParticleKind::kOutlet};
+      moved.kinds[i] = kCycle[(i / 2 + static_cast<std::size_t>(step)) % 3];
+    }
     const std::uint64_t gen = writer.write(moved, 0.1 * step);
     EXPECT_EQ(gen, static_cast<std::uint64_t>(step));
     ParticleState out;
@@ -51,9 +58,25 @@ TEST(SharedGeometry, WriteThenReadIsBitExactAndKeepsKindsAndIds) {
     EXPECT_EQ(std::memcmp(out.positions.data(), moved.positions.data(), 8 * 3 * 257), 0);
     EXPECT_EQ(std::memcmp(out.densities.data(), moved.densities.data(), 8 * 257), 0);
     EXPECT_EQ(std::memcmp(out.masses.data(), moved.masses.data(), 8 * 257), 0);
-    EXPECT_EQ(out.kinds, previous.kinds);
+    EXPECT_EQ(out.kinds, moved.kinds);
     EXPECT_EQ(out.ids, previous.ids);
     EXPECT_TRUE(out.velocities.empty());
+  }
+  // A write without kinds leaves the previous ones; a wall that turns into fluid is refused.
+  ParticleState bare = sample(257, 0.5);
+  bare.kinds.clear();
+  ParticleState out;
+  reader.read(writer.write(bare, 1.0), previous, out, "test.read");
+  EXPECT_EQ(out.kinds, previous.kinds);
+  ParticleState bad = sample(257, 0.6);
+  bad.kinds[1] = ParticleKind::kFluid;  // a wall in `previous`
+  try {
+    reader.read(writer.write(bad, 1.1), previous, out, "test.read");
+    FAIL() << "a wall turned into fluid was accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("test.read: particle 1 changed kind from wall to fluid"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -75,16 +75,26 @@ TEST(WireConvert, InvalidStateIsRefusedNamingTheField) {
   EXPECT_THROW(from_proto(p, "x"), InvalidArgument);
 }
 
-// The per-step geometry (Advance(return_state) -> ssa Advance) leaves kinds, ids and
-// velocities out; the reader takes kinds and ids from the previous state.
-TEST(WireConvert, GeometryRoundTripKeepsKindsAndIdsOfThePreviousState) {
+// The per-step geometry (Advance(return_state) -> ssa Advance) carries kinds (they change
+// along an open boundary) but leaves ids and velocities out; the reader takes the ids, and
+// the kinds when absent, from the previous state.
+TEST(WireConvert, GeometryRoundTripCarriesKindsAndKeepsIdsOfThePreviousState) {
   const ParticleState previous = sample(33);
   ParticleState moved = previous;
   for (double& x : moved.positions) x += 0.25;
   for (double& r : moved.densities) r *= 1.5;
+  // fluid -> inlet -> outlet -> fluid; walls (kind 1) stay walls
+  for (auto& k : moved.kinds) {
+    if (k == ParticleKind::kFluid)
+      k = ParticleKind::kInlet;
+    else if (k == ParticleKind::kInlet)
+      k = ParticleKind::kOutlet;
+    else if (k == ParticleKind::kOutlet)
+      k = ParticleKind::kFluid;
+  }
   common::v1::ParticleState p;
   geometry_to_proto(moved, p);
-  EXPECT_EQ(p.kinds_size(), 0);
+  EXPECT_EQ(p.kinds_size(), 33);
   EXPECT_EQ(p.ids_size(), 0);
   EXPECT_EQ(p.velocities_size(), 0);
   std::string bytes;
@@ -97,15 +107,42 @@ TEST(WireConvert, GeometryRoundTripKeepsKindsAndIdsOfThePreviousState) {
   EXPECT_EQ(out.positions, moved.positions);
   EXPECT_EQ(out.densities, moved.densities);
   EXPECT_EQ(out.masses, moved.masses);
-  EXPECT_EQ(out.kinds, previous.kinds);
+  EXPECT_EQ(out.kinds, moved.kinds);
+  EXPECT_NE(out.kinds, previous.kinds);
   EXPECT_EQ(out.ids, previous.ids);
   EXPECT_TRUE(out.velocities.empty());
-  // A full state (with kinds) is read as by from_proto: its own kinds win.
-  ParticleState relabelled = moved;
-  relabelled.kinds.assign(relabelled.size(), ParticleKind::kFluid);
-  to_proto(relabelled, p);
-  state_from_proto(p, previous, out, "x");
-  EXPECT_EQ(out.kinds, relabelled.kinds);
+  // Without kinds (an older fluid service) the previous kinds are kept.
+  q.clear_kinds();
+  state_from_proto(q, previous, out, "advance.particles");
+  EXPECT_EQ(out.kinds, previous.kinds);
+}
+
+TEST(WireConvert, GeometryThatTurnsAWallIntoFluidOrHasABadKindIsRefused) {
+  const ParticleState previous = sample(8);  // particle 1 is a wall
+  ParticleState out;
+  common::v1::ParticleState p;
+  geometry_to_proto(previous, p);
+  p.set_kinds(1, 0);
+  try {
+    state_from_proto(p, previous, out, "advance.particles");
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_STREQ(e.what(),
+                 "advance.particles: particle 1 changed kind from wall to fluid (allowed: fluid, "
+                 "inlet and outlet change into each other; wall particles stay walls)");
+  }
+  geometry_to_proto(previous, p);
+  p.set_kinds(0, 1);  // fluid -> wall
+  EXPECT_THROW(state_from_proto(p, previous, out, "advance.particles"), InvalidArgument);
+  geometry_to_proto(previous, p);
+  p.set_kinds(2, 300);  // (must not wrap into a valid kind)
+  try {
+    state_from_proto(p, previous, out, "advance.particles");
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_STREQ(e.what(),
+                 "advance.particles: kinds[2] = 300 (allowed: 0 fluid, 1 wall, 2 inlet, 3 outlet)");
+  }
 }
 
 TEST(WireConvert, GeometryWithTheWrongCountOrBadValuesIsRefused) {

@@ -265,13 +265,6 @@ const std::vector<MalformedCase>& cases() {
         "allowed: backend sdpd"},
        "rate: 1.0}",
        "rate: 1.0, kinds: [fluid, inlet, outlet]}"},
-      {"open_boundary_reaction_kinds_fluid_only",
-       "  backend: static\n",
-       open_channel("{inlet: [0, 0.45], outlet: [0.55, 1.0], mean_velocity: 0.1}"),
-       {"scene.yaml:27:5:",
-        "reactions[0]: kinds: default [fluid]: with fluid.open_boundary "
-        "particles change kind between fluid, inlet and outlet; allowed: all "
-        "three of them or none"}},
       {"open_boundary_parabolic_in_1d",
        "  backend: static\n",
        open_channel("{inlet: [0, 0.45], outlet: [0.55, 1.0], mean_velocity: 0.1, profile: "

@@ -146,13 +146,16 @@ void geometry_to_proto(const ParticleState& in, common::v1::ParticleState& out) 
   out.mutable_densities()->Assign(in.densities.begin(), in.densities.end());
   out.mutable_masses()->Assign(in.masses.begin(), in.masses.end());
   out.clear_velocities();
-  out.clear_kinds();
+  auto* kinds = out.mutable_kinds();
+  kinds->Clear();
+  kinds->Reserve(static_cast<int>(in.kinds.size()));
+  for (auto k : in.kinds) kinds->Add(static_cast<std::uint32_t>(k));
   out.clear_ids();
 }
 
 void state_from_proto(const common::v1::ParticleState& in, const ParticleState& previous,
                       ParticleState& out, std::string_view where) {
-  if (in.kinds_size() > 0 || in.ids_size() > 0) {
+  if (in.ids_size() > 0) {
     out = from_proto(in, where);
     return;
   }
@@ -167,11 +170,39 @@ void state_from_proto(const common::v1::ParticleState& in, const ParticleState& 
   out.densities.assign(in.densities().begin(), in.densities().end());
   out.masses.assign(in.masses().begin(), in.masses().end());
   out.velocities.assign(in.velocities().begin(), in.velocities().end());
+  out.kinds.resize(static_cast<std::size_t>(in.kinds_size()));
+  for (int i = 0; i < in.kinds_size(); ++i) {
+    const std::uint32_t k = in.kinds(i);
+    if (k > static_cast<std::uint32_t>(ParticleKind::kOutlet)) {
+      throw InvalidArgument(std::string(where) + ": kinds[" + std::to_string(i) + "] = " +
+                            std::to_string(k) + " (allowed: 0 fluid, 1 wall, 2 inlet, 3 outlet)");
+    }
+    out.kinds[static_cast<std::size_t>(i)] = static_cast<ParticleKind>(k);
+  }
   finish_geometry(previous, out, where);
 }
 
 void finish_geometry(const ParticleState& previous, ParticleState& out, std::string_view where) {
-  out.kinds = previous.kinds;
+  if (out.kinds.empty()) {
+    out.kinds = previous.kinds;
+  } else if (out.kinds.size() == previous.kinds.size()) {
+    // Kinds may change along an open boundary (fluid <-> inlet <-> outlet); walls never do.
+    for (std::size_t i = 0; i < out.kinds.size(); ++i) {
+      const ParticleKind k = out.kinds[i], was = previous.kinds[i];
+      if (k > ParticleKind::kOutlet) {
+        throw InvalidArgument(std::string(where) + ": kinds[" + std::to_string(i) +
+                              "] = " + std::to_string(static_cast<int>(k)) +
+                              " (allowed: 0 fluid, 1 wall, 2 inlet, 3 outlet)");
+      }
+      if ((k == ParticleKind::kWall) != (was == ParticleKind::kWall)) {
+        throw InvalidArgument(std::string(where) + ": particle " + std::to_string(i) +
+                              " changed kind from " + std::string(to_string(was)) + " to " +
+                              std::string(to_string(k)) +
+                              " (allowed: fluid, inlet and outlet change into each other; wall "
+                              "particles stay walls)");
+      }
+    }
+  }
   out.ids = previous.ids;
   try {
     out.validate();

@@ -30,22 +30,27 @@ struct SharedGeometry::Slot {
   std::uint64_t generation;  ///< held by the slot; 0 = never written or being written
   std::uint64_t count;       ///< particles of that write
   std::uint32_t dimension;   ///< of that write
-  std::uint32_t reserved;    ///< 0
+  std::uint32_t has_kinds;   ///< 1: the slot's kinds bytes hold that write's kinds
   double time;               ///< simulated time of that write
 };
 
 namespace {
 
 constexpr char kMagic[8] = {'S', 'A', 'D', 'R', 'G', 'E', 'O', '\0'};
-constexpr std::uint32_t kVersion = 2;  // 2: two slots (double buffer)
+constexpr std::uint32_t kVersion = 3;  // 2: two slots (double buffer); 3: + kinds
 constexpr std::size_t kHeaderBytes = 64;
 constexpr std::size_t kSlotHeaderBytes = 32;
 constexpr std::size_t kSlots = 2;
 constexpr std::size_t kMetaBytes = kHeaderBytes + kSlots * kSlotHeaderBytes;
 
+/// Bytes of one slot's kinds (one byte per particle), padded to 8.
+std::size_t kind_bytes(std::size_t capacity) {
+  return (capacity + 7) / 8 * 8;
+}
+
 std::size_t bytes_for(std::size_t capacity) {
-  // per slot: 3N positions, N densities, N masses
-  return kMetaBytes + kSlots * 5 * capacity * sizeof(double);
+  // per slot: 3N positions, N densities, N masses (doubles), then per slot N kinds (bytes)
+  return kMetaBytes + kSlots * (5 * capacity * sizeof(double) + kind_bytes(capacity));
 }
 
 std::string system_error(const std::string& what, const std::string& name) {
@@ -115,7 +120,8 @@ SharedGeometry SharedGeometry::open(const std::string& name, std::string_view wh
   if (std::memcmp(h->magic, kMagic, sizeof kMagic) != 0 || h->version != kVersion) {
     throw fail("not a sadr geometry segment of version " + std::to_string(kVersion));
   }
-  if (h->capacity > (g.bytes_ - kMetaBytes) / (kSlots * 5 * sizeof(double))) {
+  if (h->capacity > (g.bytes_ - kMetaBytes) / (kSlots * 5 * sizeof(double)) ||
+      bytes_for(static_cast<std::size_t>(h->capacity)) > g.bytes_) {
     throw fail("header capacity " + std::to_string(h->capacity) + " exceeds the segment size " +
                std::to_string(g.bytes_));
   }
@@ -165,6 +171,12 @@ double* SharedGeometry::data(std::uint64_t generation) const {
          (generation % kSlots) * 5 * cap;
 }
 
+std::uint8_t* SharedGeometry::kinds(std::uint64_t generation) const {
+  const std::size_t cap = static_cast<std::size_t>(header()->capacity);
+  return static_cast<std::uint8_t*>(base_) + kMetaBytes + kSlots * 5 * cap * sizeof(double) +
+         (generation % kSlots) * kind_bytes(cap);
+}
+
 std::uint64_t SharedGeometry::write(const ParticleState& p, double time) {
   Header* h = header();
   const std::size_t n = p.size(), cap = static_cast<std::size_t>(h->capacity);
@@ -182,6 +194,8 @@ std::uint64_t SharedGeometry::write(const ParticleState& p, double time) {
   std::memcpy(d, p.positions.data(), 3 * n * sizeof(double));
   std::memcpy(d + 3 * cap, p.densities.data(), n * sizeof(double));
   std::memcpy(d + 4 * cap, p.masses.data(), n * sizeof(double));
+  s->has_kinds = p.kinds.size() == n ? 1 : 0;
+  if (s->has_kinds) std::memcpy(kinds(g), p.kinds.data(), n);
   s->dimension = static_cast<std::uint32_t>(p.dimension);
   s->count = n;
   s->time = time;
@@ -219,11 +233,18 @@ void SharedGeometry::read(std::uint64_t generation, const ParticleState& previou
   out.positions.assign(d, d + 3 * n);
   out.densities.assign(d + 3 * cap, d + 3 * cap + n);
   out.masses.assign(d + 4 * cap, d + 4 * cap + n);
+  const bool with_kinds = s->has_kinds == 1;
+  if (with_kinds) {
+    const std::uint8_t* k = kinds(generation);
+    out.kinds.resize(n);
+    std::memcpy(out.kinds.data(), k, n);
+  }
   std::atomic_thread_fence(std::memory_order_acquire);
   if (const std::uint64_t held = gen_ref.load(std::memory_order_relaxed); held != generation) {
     throw stale(held, " after the copy (overwritten while reading)");
   }
   out.velocities.clear();
+  if (!with_kinds) out.kinds.clear();
   finish_geometry(previous, out, where);
 }
 

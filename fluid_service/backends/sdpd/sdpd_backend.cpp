@@ -140,23 +140,6 @@ void SdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   list_ref_x_.clear();
   nlist_ = {};
   open_ = model.open_boundary.enabled;
-  if (open_) {
-    // Reaction sites are fixed at setup by kind, but kinds change as particles move through
-    // the buffers: a reaction must treat fluid, inlet and outlet alike.
-    for (std::size_t r = 0; r < model.reactions.size(); ++r) {
-      const auto& ks = model.reactions[r].kinds;
-      auto has = [&](ParticleKind k) {
-        return ks.empty() ? k == ParticleKind::kFluid
-                          : std::find(ks.begin(), ks.end(), k) != ks.end();
-      };
-      const bool f = has(ParticleKind::kFluid);
-      if (f != has(ParticleKind::kInlet) || f != has(ParticleKind::kOutlet)) {
-        throw InvalidArgument("reactions[" + std::to_string(r) +
-                              "].kinds: with an open boundary a reaction fires on all of fluid, "
-                              "inlet, outlet or on none of them (particles change kind)");
-      }
-    }
-  }
   buffer_.assign(n, 0);
   conveyor_.assign(n, 0);  // initial inlet particles are conveyor particles
   for (std::size_t i = 0; i < n && open_; ++i) {
@@ -168,7 +151,7 @@ void SdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   half_ok_ = !open_ && !morris_ && species_.transported().empty() && !species_.has_reactions() &&
              std::none_of(wall_.begin(), wall_.end(), [](std::uint8_t w) { return w != 0; });
   holes_.clear();
-  if (open_) apply_open_boundary(0.0);
+  if (open_) apply_open_boundary(0.0);  // (reaction sites follow the kinds it sets)
   time_ = 0;
   prepared_ = false;
   initialized_ = true;
@@ -478,6 +461,8 @@ void SdpdBackend::apply_open_boundary(double dt) {
   const double h = kernel_.support();
   extrapolate_from_fluid(ParticleKind::kInlet, ob.fluid_lo, ob.fluid_lo + h);
   extrapolate_from_fluid(ParticleKind::kOutlet, ob.fluid_hi - h, ob.fluid_hi);
+  // Reactions fire by kind: their sites move with the particles' new kinds.
+  if (species_.has_reactions()) species_.update_sites(kinds_);
 }
 
 void SdpdBackend::extrapolate_from_fluid(ParticleKind target, double lo, double hi) {
@@ -709,6 +694,7 @@ void SdpdBackend::restore(std::string_view blob) {
   for (std::size_t i = 0; i < n; ++i) {
     buffer_[i] = kinds_[i] == ParticleKind::kInlet || kinds_[i] == ParticleKind::kOutlet;
   }
+  if (open_ && species_.has_reactions()) species_.update_sites(kinds_);
   time_ = t;
   prepared_ = false;
   list_ref_x_.clear();

@@ -64,22 +64,23 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
     CompiledReaction cr;
     cr.rate = re.rate;
     // Sites: kinds (default fluid only) intersected with the optional particle list.
-    bool kind_ok[4] = {true, false, false, false};
+    cr.kind_ok = {1, 0, 0, 0};
     if (!re.kinds.empty()) {
-      kind_ok[0] = false;
+      cr.kind_ok[0] = 0;
       for (const ParticleKind k : re.kinds) {
         const auto ki = static_cast<std::size_t>(k);
-        if (ki < 4) kind_ok[ki] = true;
+        if (ki < 4) cr.kind_ok[ki] = 1;
       }
     }
     cr.fires.assign(n, 0);
     auto site = [&](std::size_t i) {
       const auto ki = static_cast<std::size_t>(state.kind(i));
-      if (ki < 4 && kind_ok[ki]) cr.fires[i] = 1;
+      if (ki < 4 && cr.kind_ok[ki]) cr.fires[i] = 1;
     };
     if (re.particles.empty()) {
       for (std::size_t i = 0; i < n; ++i) site(i);
     } else {
+      cr.listed.assign(n, 0);
       for (std::size_t k = 0; k < re.particles.size(); ++k) {
         const std::uint32_t i = re.particles[k];
         if (i >= n) {
@@ -87,6 +88,7 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
                                 std::to_string(k) + "] = " + std::to_string(i) +
                                 " (must index a particle, [0, " + std::to_string(n) + "))");
         }
+        cr.listed[i] = 1;
         site(i);
       }
     }
@@ -128,6 +130,22 @@ double SpeciesTransport::velocity(const CompiledReaction& r, std::size_t i,
     v *= p * t.inv_factorial;
   }
   return v;
+}
+
+void SpeciesTransport::update_sites(std::span<const ParticleKind> kinds) {
+  const std::size_t n = reacts_.size();
+  if (kinds.size() != n) {
+    throw InvalidArgument("update_sites: " + std::to_string(kinds.size()) + " kinds for " +
+                          std::to_string(n) + " particles");
+  }
+  std::fill(reacts_.begin(), reacts_.end(), 0);
+  for (CompiledReaction& cr : reactions_) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto ki = static_cast<std::size_t>(kinds[i]);
+      cr.fires[i] = (cr.listed.empty() || cr.listed[i]) && ki < 4 && cr.kind_ok[ki] ? 1 : 0;
+      reacts_[i] |= cr.fires[i];
+    }
+  }
 }
 
 void SpeciesTransport::add_reactions(std::size_t i, const std::vector<std::vector<double>>& c,

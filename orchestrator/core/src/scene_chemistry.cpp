@@ -182,23 +182,6 @@ std::vector<ParticleKind> read_kinds(SceneContext& ctx, const Field& f) {
           "unknown particle kind '" + k + "' (allowed: " + join_names(kKindNames) + ")");
     }
   }
-  if (ctx.open_boundary) {
-    auto has = [&](ParticleKind k) {
-      return std::find(kinds.begin(), kinds.end(), k) != kinds.end();
-    };
-    const bool fl = has(ParticleKind::kFluid);
-    if (fl != has(ParticleKind::kInlet) || fl != has(ParticleKind::kOutlet)) {
-      const Field where =
-          YamlReader::present(YamlReader::child(f, "kinds")) ? YamlReader::child(f, "kinds") : f;
-      ctx.reader.error(where,
-                       std::string(YamlReader::present(YamlReader::child(f, "kinds"))
-                                       ? ""
-                                       : "kinds: default [fluid]: ") +
-                           "with fluid.open_boundary particles change kind between fluid, inlet "
-                           "and outlet; allowed: all three of them or none (e.g. [fluid, "
-                           "inlet, outlet] or [wall])");
-    }
-  }
   return kinds;
 }
 

@@ -50,17 +50,19 @@ void to_proto(const ParticleState& in, common::v1::ParticleState& out, bool with
 /// Checks lengths, finiteness, positivity (ParticleState::validate) and kind values.
 ParticleState from_proto(const common::v1::ParticleState& in, std::string_view where);
 
-/// The per-step geometry the SSA needs: dimension, positions, densities, masses
-/// (no velocities, kinds or ids: those never change after Init).
+/// The per-step geometry the SSA needs: dimension, positions, densities, masses and
+/// kinds (they change along an open boundary; no velocities or ids: ids never change).
 void geometry_to_proto(const ParticleState& in, common::v1::ParticleState& out);
 /// Reads a state that may leave kinds and ids empty (geometry_to_proto's
 /// output) into `out`, reusing its buffers: absent kinds and ids are taken
 /// from `previous`, which must have the same particle count. A state with
-/// kinds or ids is read as by from_proto. Validates like from_proto.
+/// ids is read as by from_proto. Validates like from_proto (finish_geometry).
 void state_from_proto(const common::v1::ParticleState& in, const ParticleState& previous,
                       ParticleState& out, std::string_view where);
-/// The tail of every geometry update: kinds and ids from `previous` (they never
-/// change after Init), then validation, errors prefixed with `where`.
+/// The tail of every geometry update: ids (and kinds, if `out` has none) from
+/// `previous`; kinds given must be valid and keep every wall a wall and every other
+/// particle a non-wall (fluid, inlet and outlet change into each other along an open
+/// boundary); then validation, errors prefixed with `where`.
 void finish_geometry(const ParticleState& previous, ParticleState& out, std::string_view where);
 
 /// Region name -> particle indices.

@@ -14,10 +14,12 @@
 /// and a generation number travel in the messages. Remote services (tcp, other
 /// hosts) keep the inline path.
 ///
-/// Layout (version 2): a 64-byte header (magic, version, capacity N, last
+/// Layout (version 3): a 64-byte header (magic, version, capacity N, last
 /// generation written), two 32-byte slot headers (generation, count, dimension,
-/// time), then two slots of 3N positions, N densities, N masses each (doubles,
-/// native byte order: same host). Generation g goes to slot g % 2 (a double
+/// has-kinds flag, time), then two slots of 3N positions, N densities, N masses
+/// each (doubles, native byte order: same host), then two slots of N kinds (one
+/// byte each, padded to 8: kinds change along an open boundary, so the SSA's
+/// reactions can follow them). Generation g goes to slot g % 2 (a double
 /// buffer): with the orchestrator's overlapped loop, fluid_service writes
 /// generation g + 1 while ssa_service may still read generation g, and a write
 /// never touches the slot of the previous generation. A read checks the slot's
@@ -61,16 +63,18 @@ class SharedGeometry {
   /// Removes the name (mappings, including this one, stay valid). Idempotent.
   void unlink();
 
-  /// Writes p's dimension, positions, densities and masses and `time` as the
-  /// next generation g (into slot g % 2, leaving generation g - 1 readable) and
-  /// returns g. Throws InvalidArgument if p has more particles than the segment
-  /// holds.
+  /// Writes p's dimension, positions, densities, masses, kinds (when p has them)
+  /// and `time` as the next generation g (into slot g % 2, leaving generation
+  /// g - 1 readable) and returns g. Throws InvalidArgument if p has more
+  /// particles than the segment holds.
   std::uint64_t write(const ParticleState& p, double time);
-  /// Reads what write() stored into out (dimension, positions, densities, masses;
-  /// kinds and ids from `previous`, velocities empty) and validates it. Throws
-  /// InvalidArgument naming `where` if the slot of `generation` does not hold it
-  /// (a stale, overwritten or foreign generation, also when it is overwritten
-  /// during the copy), or the count differs from previous.size().
+  /// Reads what write() stored into out (dimension, positions, densities, masses,
+  /// kinds if written, else from `previous`; ids from `previous`, velocities
+  /// empty) and validates it (finish_geometry). Throws InvalidArgument naming
+  /// `where` if the slot of `generation` does not hold it (a stale, overwritten or
+  /// foreign generation, also when it is overwritten during the copy), the count
+  /// differs from previous.size(), or a kind is invalid or turns a wall into a
+  /// non-wall particle or back.
   void read(std::uint64_t generation, const ParticleState& previous, ParticleState& out,
             std::string_view where) const;
 
@@ -78,6 +82,7 @@ class SharedGeometry {
   struct Header;
   struct Slot;
   Header* header() const;
+  std::uint8_t* kinds(std::uint64_t generation) const;
   Slot* slot(std::uint64_t generation) const;
   double* data(std::uint64_t generation) const;
 

@@ -5,6 +5,7 @@
 /// diffusion update of SPEC eq 17, and mass-action reactions.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -78,6 +79,11 @@ class SpeciesTransport {
                                            const ParticleState& state) const;
   [[nodiscard]] double max_diffusivity() const { return max_kappa_; }
   [[nodiscard]] bool has_reactions() const { return !reactions_.empty(); }
+  /// Re-derives the reaction sites from the particles' current kinds (ReactionSpec::kinds,
+  /// still intersected with ReactionSpec::particles): for backends whose particles change
+  /// kind (fluid <-> inlet <-> outlet at an open boundary). Wall particles never change kind,
+  /// so wall roles and active_wall() stay as set up.
+  void update_sites(std::span<const ParticleKind> kinds);
   [[nodiscard]] double two_kappa(int s) const { return two_kappa_[s]; }
 
  private:
@@ -91,6 +97,8 @@ class SpeciesTransport {
     std::vector<Term> reactants;
     std::vector<std::pair<int, int>> delta;  // (species, net stoichiometry change)
     std::vector<std::uint8_t> fires;         // [particle] 1 where the reaction fires
+    std::array<std::uint8_t, 4> kind_ok{};   // [kind] 1 if the reaction fires on that kind
+    std::vector<std::uint8_t> listed;        // [particle] in ReactionSpec::particles (empty: all)
   };
   [[nodiscard]] double velocity(const CompiledReaction& r, std::size_t i,
                                 const std::vector<std::vector<double>>& c) const;
