@@ -115,6 +115,24 @@ void to_proto(const ParticleState& in, common::v1::ParticleState& out, bool with
   out.mutable_ids()->Assign(in.ids.begin(), in.ids.end());
 }
 
+namespace {
+
+/// in.kinds into `kinds` (resized), each checked to be a ParticleKind value.
+void kinds_from_proto(const common::v1::ParticleState& in, std::vector<ParticleKind>& kinds,
+                      std::string_view where) {
+  kinds.resize(static_cast<std::size_t>(in.kinds_size()));
+  for (int i = 0; i < in.kinds_size(); ++i) {
+    const std::uint32_t k = in.kinds(i);
+    if (k > static_cast<std::uint32_t>(ParticleKind::kOutlet)) {
+      throw InvalidArgument(std::string(where) + ": kinds[" + std::to_string(i) + "] = " +
+                            std::to_string(k) + " (allowed: 0 fluid, 1 wall, 2 inlet, 3 outlet)");
+    }
+    kinds[static_cast<std::size_t>(i)] = static_cast<ParticleKind>(k);
+  }
+}
+
+}  // namespace
+
 ParticleState from_proto(const common::v1::ParticleState& in, std::string_view where) {
   ParticleState s;
   s.dimension = static_cast<int>(in.dimension());
@@ -123,15 +141,7 @@ ParticleState from_proto(const common::v1::ParticleState& in, std::string_view w
   s.masses.assign(in.masses().begin(), in.masses().end());
   s.velocities.assign(in.velocities().begin(), in.velocities().end());
   s.ids.assign(in.ids().begin(), in.ids().end());
-  s.kinds.reserve(static_cast<std::size_t>(in.kinds_size()));
-  for (int i = 0; i < in.kinds_size(); ++i) {
-    const std::uint32_t k = in.kinds(i);
-    if (k > static_cast<std::uint32_t>(ParticleKind::kOutlet)) {
-      throw InvalidArgument(std::string(where) + ": kinds[" + std::to_string(i) + "] = " +
-                            std::to_string(k) + " (allowed: 0 fluid, 1 wall, 2 inlet, 3 outlet)");
-    }
-    s.kinds.push_back(static_cast<ParticleKind>(k));
-  }
+  kinds_from_proto(in, s.kinds, where);
   try {
     s.validate();
   } catch (const InvalidArgument& e) {
@@ -170,15 +180,7 @@ void state_from_proto(const common::v1::ParticleState& in, const ParticleState& 
   out.densities.assign(in.densities().begin(), in.densities().end());
   out.masses.assign(in.masses().begin(), in.masses().end());
   out.velocities.assign(in.velocities().begin(), in.velocities().end());
-  out.kinds.resize(static_cast<std::size_t>(in.kinds_size()));
-  for (int i = 0; i < in.kinds_size(); ++i) {
-    const std::uint32_t k = in.kinds(i);
-    if (k > static_cast<std::uint32_t>(ParticleKind::kOutlet)) {
-      throw InvalidArgument(std::string(where) + ": kinds[" + std::to_string(i) + "] = " +
-                            std::to_string(k) + " (allowed: 0 fluid, 1 wall, 2 inlet, 3 outlet)");
-    }
-    out.kinds[static_cast<std::size_t>(i)] = static_cast<ParticleKind>(k);
-  }
+  kinds_from_proto(in, out.kinds, where);
   finish_geometry(previous, out, where);
 }
 
