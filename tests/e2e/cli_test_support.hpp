@@ -53,6 +53,16 @@ inline fs::path write_scene(const fs::path& dir, const std::string& text,
                             const std::string& name = "scene.yaml") {
   const fs::path p = dir / name;
   std::ofstream(p) << text;
+  // tests/e2e/compare_builds.py runs every e2e scene on two builds: with
+  // SADR_SCENE_DUMP set, each scene a test writes is also kept there.
+  if (const char* dump = std::getenv("SADR_SCENE_DUMP"); dump != nullptr && *dump != '\0') {
+    fs::create_directories(dump);
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    const std::string test = info != nullptr
+                                 ? std::string(info->test_suite_name()) + "." + info->name()
+                                 : std::string("no_test");
+    std::ofstream(fs::path(dump) / (test + "." + name)) << text;
+  }
   return p;
 }
 
