@@ -18,6 +18,10 @@ PACKAGES=(
   nlohmann-json3-dev                        # JSON manifests and benchmark output
   python3 python3-numpy python3-scipy       # reference scripts for validation tests
   procps                                    # pgrep, used by the e2e tests to find service processes
+  python3-pandas python3-xarray python3-matplotlib python3-yaml  # the Python package (python/sadr)
+  python3-pytest                            # its tests (tests/python, run by ctest)
+  python3-distributed                       # the Dask example (python/sadr/dask_runner.py)
+  python3-nbconvert python3-ipykernel       # the notebook examples/notebooks/, executed in the tests
 )
 
 missing=()

@@ -1,0 +1,156 @@
+# SPDX-License-Identifier: MIT
+"""One-line plots returning a matplotlib Figure (the Agg backend unless one is
+already chosen, so they work without a display):
+
+    sadr.plot_particles(frame, color="T")          # particles coloured by a field
+    sadr.plot_profile(frame, "vx", [0.5, 0], [0.5, 1])
+    sadr.plot_series(ensemble.band("T"))           # mean and confidence band
+    sadr.plot_sweep(table, "diffusivity", "T")     # observable against a parameter
+
+Each takes ``ax=`` to draw into existing axes and returns that axes' figure.
+"""
+from __future__ import annotations
+
+import matplotlib
+
+if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
+    matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .frames import KIND_NAMES  # noqa: E402
+from .regions import as_region  # noqa: E402
+
+_MARKERS = {0: "o", 1: "s", 2: ">", 3: "<"}
+
+
+def _axes(ax, figsize=(6, 4)):
+    if ax is not None:
+        return ax.figure, ax
+    fig, ax = plt.subplots(figsize=figsize, layout="constrained")
+    return fig, ax
+
+
+def plot_particles(frame, color: str = "speed", *, region=None, axes=(0, 1), size=None,
+                   cmap="viridis", walls: bool = True, arrows: bool = False, ax=None,
+                   title: str | None = None):
+    """Particles of ``frame`` in the plane of ``axes`` (default x-y), coloured by
+    ``color`` (a species, 'speed', 'density', any Frame.field name). Wall
+    particles are drawn grey and uncoloured when ``walls``; ``arrows`` adds the
+    velocity field. Returns the Figure."""
+    fig, ax = _axes(ax)
+    m = as_region(region).mask(frame)
+    wall = frame.kinds == KIND_NAMES.index("wall")
+    pos = frame.positions[:, list(axes)]
+    values = frame.field(color)
+    s = size if size is not None else max(2.0, 4000.0 / max(1, len(frame)))
+    if walls and np.any(m & wall):
+        ax.scatter(*pos[m & wall].T, s=s, c="0.75", marker="s", linewidths=0, label="wall")
+    shown = m & ~wall if walls else m
+    sc = ax.scatter(*pos[shown].T, s=s, c=values[shown], cmap=cmap, linewidths=0)
+    fig.colorbar(sc, ax=ax, label=color)
+    if arrows:
+        v = frame.velocity[:, list(axes)]
+        ax.quiver(*pos[shown].T, *v[shown].T, color="k", alpha=0.6, width=0.002)
+    ax.set_aspect("equal")
+    ax.set_xlabel("xyz"[axes[0]])
+    ax.set_ylabel("xyz"[axes[1]])
+    ax.set_title(title if title is not None else f"{color} at t = {frame.time:g}")
+    return fig
+
+
+def profile(frame, field: str, start, end, *, width=None, bins: int = 20, region=None):
+    """Mean of ``field`` along the segment start -> end: particles within
+    ``width`` of the segment (default: 1/bins of its length) are binned by their
+    projection onto it. Returns (s, mean, count): bin centres (distance from
+    start), the bin means (NaN where empty) and counts."""
+    start = np.asarray(start, dtype=float)
+    end = np.asarray(end, dtype=float)
+    d = start.size
+    seg = end - start
+    length = float(np.linalg.norm(seg))
+    if length == 0:
+        raise ValueError("profile: start and end are the same point")
+    width = length / bins if width is None else float(width)
+    p = frame.positions[:, :d] - start
+    s = p @ seg / length
+    dist = np.linalg.norm(p - np.outer(s, seg / length), axis=1)
+    m = as_region(region).mask(frame) & (s >= 0) & (s <= length) & (dist <= width)
+    edges = np.linspace(0, length, bins + 1)
+    idx = np.clip(np.digitize(s[m], edges) - 1, 0, bins - 1)
+    values = frame.field(field)[m]
+    count = np.bincount(idx, minlength=bins)
+    total = np.bincount(idx, weights=values, minlength=bins)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = np.where(count > 0, total / np.maximum(count, 1), np.nan)
+    return 0.5 * (edges[1:] + edges[:-1]), mean, count
+
+
+def plot_profile(frame, field: str, start, end, *, width=None, bins: int = 20, region=None,
+                 reference=None, ax=None, label=None):
+    """Profile of ``field`` along start -> end (see :func:`profile`); ``reference``
+    is an optional callable s -> value drawn as a line. Returns the Figure."""
+    fig, ax = _axes(ax)
+    s, mean, _ = profile(frame, field, start, end, width=width, bins=bins, region=region)
+    ax.plot(s, mean, "o-", ms=4, label=label or f"{field} (t = {frame.time:g})")
+    if reference is not None:
+        fine = np.linspace(s[0], s[-1], 200)
+        ax.plot(fine, [reference(x) for x in fine], "k--", lw=1, label="reference")
+    ax.set_xlabel(f"distance along {np.round(start, 3).tolist()} -> {np.round(end, 3).tolist()}")
+    ax.set_ylabel(field)
+    ax.legend()
+    return fig
+
+
+def plot_series(data, *, ax=None, label=None, ylabel=None, title=None):
+    """Time series: a band DataFrame (Ensemble.band: mean with its lower/upper
+    band shaded), or a DataFrame/Series of plain columns (Run.series,
+    Ensemble.series), one line each. Returns the Figure."""
+    fig, ax = _axes(ax)
+    if hasattr(data, "columns") and {"mean", "lower", "upper"} <= set(data.columns):
+        t = data.index.to_numpy()
+        line, = ax.plot(t, data["mean"], label=label or "ensemble mean")
+        n = int(data["n"].iloc[0]) if "n" in data else None
+        ax.fill_between(t, data["lower"], data["upper"], color=line.get_color(), alpha=0.25,
+                        label="confidence band" + (f" ({n} realizations)" if n else ""))
+    else:
+        frame = data.to_frame() if not hasattr(data, "columns") else data
+        many = frame.shape[1] > 8
+        for c in frame.columns:
+            ax.plot(frame.index, frame[c], lw=0.8 if many else 1.5, alpha=0.5 if many else 1,
+                    label=None if many else str(c))
+    ax.set_xlabel("time")
+    if ylabel:
+        ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend()
+    return fig
+
+
+def plot_sweep(table, parameter: str, observable: str, *, time=None, confidence: float = 0.95,
+               ax=None):
+    """A sweep observable against its parameter from a tidy table (columns
+    ``parameter``, 'realization', 'time', ``observable``; Sweep.table): the mean
+    over realizations at ``time`` (default: the last time) with its t band.
+    Returns the Figure."""
+    from .series import t_quantile
+
+    fig, ax = _axes(ax)
+    if time is None:
+        time = table["time"].max()
+    at = table[np.isclose(table["time"], time, rtol=0, atol=1e-12 * max(1.0, abs(time)))]
+    if at.empty:
+        raise ValueError(f"plot_sweep: no rows at time {time}")
+    g = at.groupby(parameter)[observable]
+    mean, std, n = g.mean(), g.std(ddof=1), g.count()
+    x = mean.index.to_numpy(dtype=float)
+    half = np.array([t_quantile(0.5 + confidence / 2, k - 1) if k > 1 else np.nan for k in n])
+    half = half * std.to_numpy() / np.sqrt(n.to_numpy())
+    ax.errorbar(x, mean.to_numpy(), yerr=half, fmt="o-", capsize=3,
+                label=f"mean, {confidence:.0%} band (n = {int(n.min())}..{int(n.max())})")
+    ax.set_xlabel(parameter)
+    ax.set_ylabel(f"{observable} at t = {time:g}")
+    ax.legend()
+    return fig

@@ -1,0 +1,182 @@
+# SPDX-License-Identifier: MIT
+"""Output directories of `sadr run`: one run (``run.json`` + ``frames/``) and
+an ensemble (``realization_NNNN/`` folders + ``ensemble/``)."""
+from __future__ import annotations
+
+import json
+import re
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+
+from .frames import read_ensemble_frame, read_frame, read_pvd
+from .series import band, observe
+
+_FRAME_NAME = re.compile(r"frame_(\d{6})\.(csv|vtu|vtp)$")
+
+
+class Run:
+    """One realization's output directory (what `sadr run SCENE -o DIR` writes)."""
+
+    def __init__(self, path):
+        self.path = Path(path)
+        manifest = self.path / "run.json"
+        if not manifest.is_file():
+            raise FileNotFoundError(f"{self.path}: no run.json (not the output directory of a sadr run)")
+        with open(manifest, encoding="utf-8") as f:
+            self.manifest = json.load(f)
+        if self.manifest.get("format") != "sadr-run":
+            raise ValueError(f"{manifest}: format '{self.manifest.get('format')}', expected 'sadr-run'")
+
+    def __repr__(self):
+        return f"sadr.Run('{self.path}', {len(self)} frames, status {self.status})"
+
+    @property
+    def status(self) -> str:
+        return self.manifest.get("status", "")
+
+    @property
+    def timings(self) -> dict:
+        """Wall seconds per stage from run.json (``timings_s``)."""
+        return dict(self.manifest.get("timings_s", {}))
+
+    @cached_property
+    def files(self) -> list:
+        """Per output index, a dict {'csv'|'vtu'|'vtp': Path}, in index order."""
+        names = self.manifest.get("frames")
+        if names is None:  # older manifests: the folder itself
+            names = [f"frames/{p.name}" for p in (self.path / "frames").glob("frame_*")]
+        by_index = {}
+        for name in names:
+            m = _FRAME_NAME.search(name)
+            if m:
+                by_index.setdefault(int(m.group(1)), {})[m.group(2)] = self.path / name
+        return [by_index[k] for k in sorted(by_index)]
+
+    @cached_property
+    def indices(self) -> list:
+        """The output indices NNNNNN of the frames, in order."""
+        return [int(_FRAME_NAME.search(next(iter(f.values())).name).group(1)) for f in self.files]
+
+    @cached_property
+    def times(self) -> np.ndarray:
+        """Frame times, exact (from the .pvd collection, else the CSV frames)."""
+        pvds = sorted(self.path.glob("*.pvd"))
+        if pvds:
+            t = {p.name: time for time, p in read_pvd(pvds[0])}
+            if all(any(f.name in t for f in files.values()) for files in self.files):
+                return np.array([next(t[f.name] for f in files.values() if f.name in t)
+                                 for files in self.files])
+        return np.array([self.frame(k).time for k in range(len(self))])
+
+    def __len__(self):
+        return len(self.files)
+
+    def frame(self, k: int, format: str | None = None):
+        """Frame number k (0-based, negative from the end) as a sadr.Frame,
+        from ``format`` ('csv', 'vtu', 'vtp'; default: csv if written, else VTK)."""
+        files = self.files[k]
+        if format is None:
+            format = next(f for f in ("csv", "vtu", "vtp") if f in files)
+        if format not in files:
+            raise KeyError(f"{self.path}: frame {k} has no .{format} file (written: {', '.join(files)})")
+        return read_frame(files[format])
+
+    def frames(self, format: str | None = None):
+        """All frames, in order (a generator)."""
+        for k in range(len(self)):
+            yield self.frame(k, format)
+
+    @cached_property
+    def species(self) -> list:
+        return list(self.frame(0).species) if len(self) else []
+
+    def series(self, species=None, region=None, stat: str = "total"):
+        """pandas DataFrame indexed by time, one column per species (default:
+        all): the frame's ``stat`` ('total', 'mean', 'concentration') over
+        ``region`` (a sadr.Box/Disk/Kinds, a kind name, or None for all)."""
+        import pandas as pd
+
+        names = self._names(species)
+        rows = [[observe(f, s, region, stat) for s in names] for f in self.frames()]
+        return pd.DataFrame(rows, columns=names, index=pd.Index(self.times, name="time"))
+
+    def _names(self, species):
+        if species is None:
+            return self.species
+        return [species] if isinstance(species, str) else list(species)
+
+
+class Ensemble:
+    """`sadr run SCENE -r R -o DIR` (or `--realization i` tasks + `sadr ensemble DIR`)."""
+
+    def __init__(self, path):
+        self.path = Path(path)
+        dirs = sorted(p for p in self.path.glob("realization_*") if p.is_dir())
+        if not dirs:
+            raise FileNotFoundError(f"{self.path}: no realization_NNNN/ folders (not an ensemble)")
+        self.runs = [Run(p) for p in dirs]
+        self.realizations = [int(p.name.split("_")[1]) for p in dirs]
+
+    def __repr__(self):
+        return f"sadr.Ensemble('{self.path}', {len(self.runs)} realizations, {len(self.times)} frames)"
+
+    def __len__(self):
+        return len(self.runs)
+
+    def __getitem__(self, i) -> Run:
+        return self.runs[i]
+
+    @cached_property
+    def times(self) -> np.ndarray:
+        """Frame times, common to all realizations (checked)."""
+        t = self.runs[0].times
+        for r in self.runs[1:]:
+            if not np.array_equal(r.times, t):
+                raise ValueError(f"{r.path}: frame times differ from {self.runs[0].path} "
+                                 f"({len(r.times)} vs {len(t)} frames; an unfinished realization?)")
+        return t
+
+    @property
+    def species(self) -> list:
+        return self.runs[0].species
+
+    def values(self, species: str, region=None, stat: str = "total") -> np.ndarray:
+        """(realizations x frames) array of ``stat`` of ``species`` over ``region``."""
+        self.times  # noqa: B018 - checks that the realizations agree
+        return np.array([[observe(f, species, region, stat) for f in r.frames()] for r in self.runs])
+
+    def series(self, species: str, region=None, stat: str = "total"):
+        """pandas DataFrame indexed by time, one column per realization."""
+        import pandas as pd
+
+        return pd.DataFrame(self.values(species, region, stat).T, columns=self.realizations,
+                            index=pd.Index(self.times, name="time"))
+
+    def band(self, species: str, region=None, stat: str = "total", confidence: float = 0.95):
+        """Ensemble mean of the observable with its ``confidence`` band (Student t
+        over the realizations): DataFrame indexed by time, columns n, mean, std,
+        sem, lower, upper."""
+        return band(self.values(species, region, stat), self.times, confidence)
+
+    def mean_frame(self, k: int) -> dict:
+        """The per-particle ensemble statistics sadr wrote for frame k
+        (``ensemble/frame_NNNNNN.csv``): {'time', 'ids', 'realizations',
+        species: (mean, variance)}."""
+        index = self.runs[0].indices[k]
+        path = self.path / "ensemble" / f"frame_{index:06d}.csv"
+        if not path.is_file():
+            raise FileNotFoundError(f"{path}: missing (run `sadr ensemble {self.path}` to combine)")
+        time, ids, count, stats = read_ensemble_frame(path)
+        return {"time": time, "ids": ids, "realizations": count, **stats}
+
+
+def open_output(path):
+    """A sadr.Run or sadr.Ensemble for an output directory, by its layout."""
+    path = Path(path)
+    if (path / "run.json").is_file():
+        return Run(path)
+    if any(path.glob("realization_*")):
+        return Ensemble(path)
+    raise FileNotFoundError(f"{path}: neither a run (run.json) nor an ensemble (realization_NNNN/)")

@@ -1,0 +1,140 @@
+# SPDX-License-Identifier: MIT
+"""Scene files in Python: load a YAML scene, change keys, write it, and
+validate or run it through the `sadr` CLI (docs/scene-format.md has every key).
+
+    scene = sadr.Scene.load("examples/poiseuille_tracer_2d.yaml")
+    scene["time.end"] = 1.0                  # dotted keys; list items by index
+    scene["species.0.diffusivity"] = 2e-3
+    run = scene.run("runs/short")            # a sadr.Run (or Ensemble with realizations=R)
+
+Comments of the original file are not kept (PyYAML); the values are.
+"""
+from __future__ import annotations
+
+import copy
+from pathlib import Path
+
+import yaml
+
+from .cli import run_cli
+from .runs import Ensemble, Run
+
+
+def _split(key: str):
+    return [int(p) if p.lstrip("-").isdigit() else p for p in key.split(".")]
+
+
+class Scene:
+    """A scene as nested dicts and lists (``.data``) plus where it came from."""
+
+    def __init__(self, data: dict, path=None):
+        if not isinstance(data, dict):
+            raise TypeError(f"a scene is a mapping at the top level, not {type(data).__name__}")
+        self.data = data
+        self.path = Path(path) if path else None
+        self._written = yaml.safe_dump(data) if path else None
+
+    @classmethod
+    def load(cls, path):
+        path = Path(path)
+        with open(path, encoding="utf-8") as f:
+            data = yaml.safe_load(f)
+        return cls(data, path)
+
+    def __repr__(self):
+        return f"sadr.Scene('{self.data.get('name', '')}', path={str(self.path) if self.path else None})"
+
+    def copy(self):
+        """A deep copy (same source path: relative paths keep resolving)."""
+        s = Scene(copy.deepcopy(self.data))
+        s.path, s._written = self.path, None
+        return s
+
+    def __getitem__(self, key: str):
+        node = self.data
+        for part in _split(key):
+            try:
+                node = node[part]
+            except (KeyError, IndexError, TypeError):
+                raise KeyError(f"scene has no '{key}' (stopped at '{part}')") from None
+        return node
+
+    def __setitem__(self, key: str, value):
+        parts = _split(key)
+        node = self.data
+        for part in parts[:-1]:
+            if isinstance(node, dict) and part not in node:
+                node[part] = {}
+            try:
+                node = node[part]
+            except (KeyError, IndexError, TypeError):
+                raise KeyError(f"cannot set '{key}': no '{part}'") from None
+        node[parts[-1]] = value
+
+    def __contains__(self, key: str):
+        try:
+            self[key]
+            return True
+        except KeyError:
+            return False
+
+    def _data_for(self, target: Path) -> dict:
+        """The data with a relative particles.file re-anchored for a file at ``target``."""
+        data = copy.deepcopy(self.data)
+        file = (data.get("particles") or {}).get("file")
+        if file and self.path and not Path(file).is_absolute():
+            src = (self.path.parent / file).resolve()
+            try:
+                data["particles"]["file"] = str(src.relative_to(target.parent.resolve()))
+            except ValueError:
+                data["particles"]["file"] = str(src)
+        return data
+
+    def write(self, path) -> Path:
+        """Writes the scene as YAML; a relative ``particles.file`` is rewritten
+        so that it still names the same file. Returns the path."""
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        data = self._data_for(path)
+        with open(path, "w", encoding="utf-8") as f:
+            yaml.safe_dump(data, f, sort_keys=False)
+        self.data, self.path, self._written = data, path, yaml.safe_dump(data)
+        return path
+
+    def _file(self, output: Path | None = None) -> Path:
+        """A file holding the current data: the source if unchanged, else
+        ``<output>.yaml`` next to the output folder."""
+        if self.path and self._written == yaml.safe_dump(self.data):
+            return self.path
+        if output is None:
+            raise ValueError("the scene changed since it was loaded or written: write() it first")
+        return self.write(Path(str(output).rstrip("/") + ".yaml"))
+
+    def validate(self) -> str:
+        """`sadr validate`; returns its output (the plan). Invalid: sadr.InvalidInput
+        with the validator's file:line:column message."""
+        proc = run_cli(["validate", self._file()])
+        return proc.stderr + proc.stdout
+
+    def run(self, output, *, realizations: int | None = None, realization: int | None = None,
+            jobs: int | None = None, force: bool = True, quiet: bool = True, args=()):
+        """`sadr run` into ``output``; returns a sadr.Run (one realization) or
+        sadr.Ensemble (``realizations`` R > 1, or ``realization`` i: only
+        ``output/realization_iiii``). A changed scene is first written to
+        ``<output>.yaml``. Failures raise the sadr.SadrError of the exit code."""
+        output = Path(output)
+        cmd = ["run", self._file(output), "--output", output]
+        if realizations is not None:
+            cmd += ["--realizations", realizations]
+        if realization is not None:
+            cmd += ["--realization", realization]
+        if jobs is not None:
+            cmd += ["--jobs", jobs]
+        if force and realization is None:
+            cmd.append("--force")
+        if quiet:
+            cmd.append("--quiet")
+        run_cli(cmd + list(args))
+        if realization is not None:
+            return Run(output / f"realization_{realization:04d}")
+        return Ensemble(output) if realizations and realizations > 1 else Run(output)

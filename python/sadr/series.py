@@ -1,0 +1,68 @@
+# SPDX-License-Identifier: MIT
+"""Per-frame observables over a region, and ensemble confidence bands.
+
+``observe(frame, species, region, stat)`` reduces one frame to a number:
+
+* ``total``: sum over the region's particles (copy numbers: molecules);
+* ``mean``: arithmetic mean over the region's particles (per particle);
+* ``concentration``: total / total voxel volume (sum of m_i / rho_i).
+
+An empty region gives NaN for mean and concentration (0 for total) — never a
+silent 0 for an average.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .regions import as_region
+
+STATS = ("total", "mean", "concentration")
+
+
+def observe(frame, species: str, region=None, stat: str = "total") -> float:
+    """One number for one frame (see module doc)."""
+    if stat not in STATS:
+        raise ValueError(f"stat '{stat}' (allowed: {', '.join(STATS)})")
+    m = as_region(region).mask(frame)
+    values = frame.field(species)[m]
+    if stat == "total":
+        return float(np.sum(values))
+    if not m.any():
+        return float("nan")
+    if stat == "mean":
+        return float(np.mean(values))
+    return float(np.sum(values) / np.sum(frame.volume[m]))
+
+
+def t_quantile(p: float, dof: int) -> float:
+    """Student t quantile (scipy when present, else the normal quantile)."""
+    try:
+        from scipy import stats
+
+        return float(stats.t.ppf(p, dof))
+    except ImportError:  # pragma: no cover - scipy is a listed dependency
+        from statistics import NormalDist
+
+        return NormalDist().inv_cdf(p)
+
+
+def band(values: np.ndarray, times, confidence: float = 0.95):
+    """Confidence band of the ensemble mean from a (realizations x times) array.
+
+    Returns a pandas DataFrame indexed by time with columns n, mean, std
+    (unbiased), sem, lower, upper (mean -+ t_{(1+c)/2, n-1} sem)."""
+    import pandas as pd
+
+    values = np.asarray(values, dtype=float)
+    if values.ndim != 2:
+        raise ValueError("band: values must be (realizations, times)")
+    n = values.shape[0]
+    mean = values.mean(axis=0)
+    std = values.std(axis=0, ddof=1) if n > 1 else np.full(values.shape[1], math.nan)
+    sem = std / math.sqrt(n)
+    half = t_quantile(0.5 + confidence / 2, n - 1) * sem if n > 1 else sem
+    return pd.DataFrame({"n": n, "mean": mean, "std": std, "sem": sem,
+                         "lower": mean - half, "upper": mean + half},
+                        index=pd.Index(np.asarray(times, dtype=float), name="time"))

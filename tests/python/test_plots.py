@@ -1,0 +1,65 @@
+# SPDX-License-Identifier: MIT
+"""Plot one-liners: each returns a Figure that saves as PNG and draws what it says."""
+import matplotlib
+import numpy as np
+import pandas as pd
+
+import sadr
+
+
+def png(fig, path):
+    fig.savefig(path, dpi=60)
+    data = path.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 2000
+    return data
+
+
+def test_backend_is_agg():
+    sadr.plot_particles  # noqa: B018 - imports sadr.plots
+    assert matplotlib.get_backend().lower() == "agg"
+
+
+def test_particles_coloured(tmp_path, poiseuille_runs):
+    f = poiseuille_runs["binary"].frame(-1)
+    for color in ("T", "speed"):
+        fig = sadr.plot_particles(f, color=color, arrows=color == "speed")
+        assert isinstance(fig, matplotlib.figure.Figure)
+        coloured = fig.axes[0].collections[1]
+        assert len(coloured.get_array()) == np.count_nonzero(f.kinds != 1)  # walls drawn grey
+        np.testing.assert_array_equal(coloured.get_array(), f.field(color)[f.kinds != 1])
+        png(fig, tmp_path / f"{color}.png")
+
+
+def test_profile_of_a_known_field(tmp_path, poiseuille_runs):
+    """The profile of y across the channel is y itself at the bin centres
+    (to within the particle positions in a bin: spacing 0.05, 10 bins of 0.1)."""
+    f = poiseuille_runs["binary"].frame(0)
+    s, mean, count = sadr.profile(f, "y", [0.5, 0.0], [0.5, 1.0], width=0.5, bins=10)
+    assert count.sum() == 400 and (count == 40).all()  # 20 fluid rows x 20 columns
+    np.testing.assert_allclose(mean, s, atol=1e-12)
+    png(sadr.plot_profile(f, "vx", [0.5, 0.0], [0.5, 1.0], width=0.5, bins=10,
+                          reference=lambda y: 0.0), tmp_path / "profile.png")
+
+
+def test_series_and_bands(tmp_path, static_ensemble):
+    b = static_ensemble.band("A", sadr.Disk([0.5, 0.5], 0.15))
+    fig = sadr.plot_series(b)
+    ax = fig.axes[0]
+    np.testing.assert_array_equal(ax.lines[0].get_ydata(), b["mean"])
+    assert len(ax.collections) == 1  # the shaded band
+    png(fig, tmp_path / "band.png")
+    fig = sadr.plot_series(static_ensemble.series("A"))
+    assert len(fig.axes[0].lines) == 4
+    png(fig, tmp_path / "series.png")
+
+
+def test_sweep_plot(tmp_path):
+    rng = np.random.default_rng(3)
+    rows = [{"k": k, "realization": r, "time": 1.0, "A": k * 10 + rng.normal()}
+            for k in (1.0, 2.0, 4.0) for r in range(5)]
+    table = pd.DataFrame(rows)
+    fig = sadr.plot_sweep(table, "k", "A")
+    line = fig.axes[0].lines[0]
+    np.testing.assert_array_equal(line.get_xdata(), [1.0, 2.0, 4.0])
+    np.testing.assert_allclose(line.get_ydata(), table.groupby("k")["A"].mean().to_numpy())
+    png(fig, tmp_path / "sweep.png")
