@@ -133,6 +133,28 @@ TEST(Plan, ReactionsAreCountedPerService) {
   EXPECT_EQ(p.fluid_reactions, 1U);
 }
 
+TEST(Plan, StaticSsaOnlySceneSkipsTheCouplingStep) {
+  Scene s = moving_scene();
+  s.fluid.backend = "static";
+  s.time.coupling_step = 0.01;
+  s.species = {species("A", true)};
+  Plan p = make_plan(s);
+  EXPECT_TRUE(p.frame_to_frame);
+  EXPECT_TRUE(mentions(p.lines(),
+                       "skipped: coupling step (0.01): nothing moves; SSA advances "
+                       "frame to frame"));
+  EXPECT_EQ(p.to_json().at("frame_to_frame"), true);
+  // An inflow buffer resets copy numbers at every SSA call: the step matters.
+  s.species[0].boundaries.push_back({"inlet", BoundaryCondition::kInflow, 5.0});
+  EXPECT_FALSE(make_plan(s).frame_to_frame);
+  s.species[0].boundaries[0].condition = BoundaryCondition::kDirichlet;  // held inside the NSM
+  EXPECT_TRUE(make_plan(s).frame_to_frame);
+  // The fluid integrates a deterministic species every step, or particles move.
+  s.species.push_back(species("C", false));
+  EXPECT_FALSE(make_plan(s).frame_to_frame);
+  EXPECT_FALSE(make_plan(moving_scene()).frame_to_frame);
+}
+
 TEST(Plan, TextAndJsonForms) {
   Scene s = moving_scene();
   s.fluid.temperature = 0.0;

@@ -2,6 +2,7 @@
 // Splitting stages and the alignment of coupling steps on output times.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -184,6 +185,57 @@ TEST(Alignment, StagesTileTimeExactlyForBothSplittings) {
       EXPECT_EQ(fake.calls[2].op, Operator::kFluid);
     }
   }
+}
+
+/// The loop of a frame-to-frame schedule (nothing moves): the step ends.
+std::vector<double> frame_to_frame_ends(double tau, double end, const std::vector<double>& outputs,
+                                        const FrameToFrame& ftf) {
+  std::vector<double> ends;
+  double t = 0.0;
+  while (auto s = next_coupling_step(t, tau, end, outputs, &ftf)) {
+    EXPECT_EQ(s->begin, t);
+    EXPECT_GT(s->length(), 0.0);
+    EXPECT_EQ(s->output, std::find(outputs.begin(), outputs.end(), s->end) != outputs.end());
+    EXPECT_EQ(s->last, s->end == end);
+    ends.push_back(s->end);
+    t = s->end;
+    if (ends.size() > 1000) break;
+  }
+  return ends;
+}
+
+TEST(FrameToFrame, OneStepPerOutputTimeWhateverTau) {
+  const std::vector<double> out{0.0, 0.2, 0.4, 1.0, 4.0};
+  EXPECT_EQ(frame_to_frame_ends(0.01, 4.0, out, {}), (std::vector<double>{0.2, 0.4, 1.0, 4.0}));
+  // tau only sets the snap: an output 1e-12 after t counts as reached.
+  EXPECT_EQ(frame_to_frame_ends(0.01, 1.0, {0.0, 1e-12, 0.5, 1.0}, {}),
+            (std::vector<double>{0.5, 1.0}));
+}
+
+TEST(FrameToFrame, AlsoLandsOnCheckpointAndStopTimes) {
+  const std::vector<double> out{0.0, 0.5, 2.0};
+  FrameToFrame ftf;
+  ftf.checkpoint_every = 0.3;
+  ftf.stop_at = 1.0;
+  const auto ends = frame_to_frame_ends(0.01, 2.0, out, ftf);
+  // 0.3, 0.6, 0.9, 1.2 ... are multiples of 0.3 in floating point as the loop computes them.
+  const std::vector<double> want{0.3, 0.5, 2 * 0.3, 3 * 0.3, 1.0, 4 * 0.3, 5 * 0.3, 6 * 0.3, 2.0};
+  EXPECT_EQ(ends, want);
+  // A checkpoint time within snap of an output time is that output time.
+  ftf.checkpoint_every = 0.5 + 1e-13;
+  ftf.stop_at = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(frame_to_frame_ends(0.01, 2.0, out, ftf),
+            (std::vector<double>{0.5, 2 * ftf.checkpoint_every, 3 * ftf.checkpoint_every, 2.0}));
+}
+
+TEST(FrameToFrame, NullIsTheCouplingStepSchedule) {
+  const std::vector<double> out{0.0, 0.25, 1.0};
+  const auto a = next_coupling_step(0.0, 0.1, 1.0, out, nullptr);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->end, 0.1);
+  EXPECT_FALSE(next_coupling_step(1.0, 0.1, 1.0, out, nullptr));
+  FrameToFrame ftf;
+  EXPECT_THROW(next_coupling_step(0.0, 0.0, 1.0, out, &ftf), InvalidArgument);
 }
 
 TEST(Alignment, RejectsNonPositiveTau) {

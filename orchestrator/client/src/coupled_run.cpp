@@ -192,17 +192,20 @@ class CoupledRun {
     auto reaches_stop_at = [&](double t) {
       return t >= options_.stop_at - time_snap(t, tau, t_end);
     };
+    // Nothing moves (plan.frame_to_frame): one step per output/checkpoint/stop time.
+    const FrameToFrame landings{scene_.output.checkpoint_every, options_.stop_at};
+    const FrameToFrame* ftf = plan_.frame_to_frame ? &landings : nullptr;
     if (overlap_) worker_.emplace();
     const auto loop_t0 = Clock::now();
     try {
-      while (auto cs = next_coupling_step(t_, tau, t_end, outputs)) {
+      while (auto cs = next_coupling_step(t_, tau, t_end, outputs, ftf)) {
         // Overlap: leave the SSA stage of this step running while the fluid
         // computes the next one, unless the step ends where both services are
         // needed at once (a frame, a checkpoint, the stop time, the end) or a
         // stop was requested. The same stages, in the same order per service.
         const bool defer_ssa = overlap_ && !cs->output && !cs->last && cs->end < next_checkpoint &&
                                !reaches_stop_at(cs->end) && !stop_requested() &&
-                               next_coupling_step(cs->end, tau, t_end, outputs);
+                               next_coupling_step(cs->end, tau, t_end, outputs, ftf);
         step(*cs, defer_ssa);
         if (cs->output) {
           write_frame(frame_index(cs->end), cs->end);

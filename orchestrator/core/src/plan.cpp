@@ -78,6 +78,20 @@ Plan make_plan(const Scene& scene) {
       p.skipped.push_back("strang splitting: not needed (only one operator runs)");
     }
   }
+  const auto reset_between_calls = [&] {
+    return std::any_of(scene.species.begin(), scene.species.end(), [](const Species& sp) {
+      return sp.stochastic &&
+             std::any_of(sp.boundaries.begin(), sp.boundaries.end(), [](const SpeciesBoundary& b) {
+               return b.condition == BoundaryCondition::kInflow;
+             });
+    });
+  };
+  p.frame_to_frame = p.ssa_service && !p.fluid_service && !reset_between_calls();
+  if (p.frame_to_frame) {
+    p.skipped.push_back("coupling step (" + format_number(scene.time.coupling_step) +
+                        "): nothing moves; SSA advances frame to frame (to each output, "
+                        "checkpoint and stop time in one call)");
+  }
   if (!p.ssa_service || !p.fluid_stepping) {
     p.overlap_reason = "only one operator runs";
   } else if (p.splitting != Splitting::kLie) {
@@ -154,6 +168,7 @@ nlohmann::json Plan::to_json() const {
       {"back_transfer", back_transfer},
       {"splitting", std::string(to_string(splitting))},
       {"fluid_calls_per_step", fluid_calls_per_step},
+      {"frame_to_frame", frame_to_frame},
       {"fluid_species", fluid_species},
       {"ssa_species", ssa_species},
       {"back_transfer_species", back_transfer_species},

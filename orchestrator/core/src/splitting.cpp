@@ -33,29 +33,64 @@ double time_snap(double t, double tau, double end_time) {
   return std::max(1e-9 * tau, 64.0 * std::numeric_limits<double>::epsilon() * ulp_scale);
 }
 
-std::optional<CouplingStep> next_coupling_step(double t, double tau, double end_time,
-                                               std::span<const double> output_times) {
+namespace {
+void check_step_inputs(double t, double tau) {
   if (!(tau > 0.0) || !std::isfinite(tau) || !std::isfinite(t)) {
     throw InvalidArgument("next_coupling_step: tau = " + format_value(tau) +
                           ", t = " + format_value(t) + "; need finite t and tau > 0");
   }
-  const double snap = time_snap(t, tau, end_time);
-  if (t >= end_time - snap) return std::nullopt;
-  // First target strictly after t (targets within snap of t count as reached).
+}
+
+/// The first output time strictly after t + snap, or the end time.
+double next_target(double t, double snap, double end_time, std::span<const double> output_times) {
   double target = end_time;
   auto it = std::upper_bound(output_times.begin(), output_times.end(), t + snap);
   if (it != output_times.end() && *it < target) target = *it;
+  return target;
+}
+
+CouplingStep landing_step(double t, double end, double end_time,
+                          std::span<const double> output_times) {
   CouplingStep step;
   step.begin = t;
-  if (target - (t + tau) <= snap) {
-    step.end = target;  // lands: shortened, or stretched over a round-off sliver
-  } else {
-    step.end = t + tau;
-  }
-  const bool lands = step.end == target;
-  step.last = lands && target == end_time;
-  step.output = lands && std::binary_search(output_times.begin(), output_times.end(), target);
+  step.end = end;
+  step.last = end == end_time;
+  step.output = std::binary_search(output_times.begin(), output_times.end(), end);
   return step;
+}
+}  // namespace
+
+std::optional<CouplingStep> next_coupling_step(double t, double tau, double end_time,
+                                               std::span<const double> output_times) {
+  check_step_inputs(t, tau);
+  const double snap = time_snap(t, tau, end_time);
+  if (t >= end_time - snap) return std::nullopt;
+  // First target strictly after t (targets within snap of t count as reached).
+  const double target = next_target(t, snap, end_time, output_times);
+  // Lands (shortened, or stretched over a round-off sliver), or a plain step.
+  if (target - (t + tau) <= snap) return landing_step(t, target, end_time, output_times);
+  return CouplingStep{t, t + tau, false, false};
+}
+
+std::optional<CouplingStep> next_coupling_step(double t, double tau, double end_time,
+                                               std::span<const double> output_times,
+                                               const FrameToFrame* frame_to_frame) {
+  if (!frame_to_frame) return next_coupling_step(t, tau, end_time, output_times);
+  check_step_inputs(t, tau);
+  const double snap = time_snap(t, tau, end_time);
+  if (t >= end_time - snap) return std::nullopt;
+  const double target = next_target(t, snap, end_time, output_times);
+  double end = target;
+  // A checkpoint or stop time counts when it is after t and clearly before the
+  // target (within snap of the target, the target itself serves).
+  auto earlier = [&](double c) {
+    if (c > t + snap && c < target - snap && c < end) end = c;
+  };
+  if (const double every = frame_to_frame->checkpoint_every; every > 0.0) {
+    earlier((std::floor((t + snap) / every) + 1.0) * every);
+  }
+  earlier(frame_to_frame->stop_at);
+  return landing_step(t, end, end_time, output_times);
 }
 
 double next_step_length(double t, double tau, double end_time,

@@ -8,6 +8,11 @@
 ///  - no thermal noise at k_B T = 0 (no random numbers drawn by the fluid);
 ///  - no back-transfer of copy numbers to the fluid unless a fluid term depends
 ///    on a stochastic species (Boussinesq);
+///  - no coupling step when nothing moves and only the SSA runs (static backend,
+///    no fluid_service, no stochastic inflow buffer to reset): the SSA advances
+///    from output time to output time (and checkpoint and stop times) in one
+///    call each, with the same results (the NSM's pending event times carry over
+///    from one call to the next);
 ///  - only the species each service needs go on the wire.
 #pragma once
 
@@ -30,7 +35,10 @@ struct Plan {
   bool thermal_noise = false;  ///< the fluid draws thermal noise (k_B T > 0, moving backend)
   bool back_transfer = false;  ///< copy numbers ssa -> fluid before every fluid step
   Splitting splitting = Splitting::kLie;
-  int fluid_calls_per_step = 0;                    ///< 0, 1 (Lie) or 2 (Strang half steps)
+  int fluid_calls_per_step = 0;  ///< 0, 1 (Lie) or 2 (Strang half steps)
+  /// Skip the coupling step: SSA alone, nothing moves, nothing reset between
+  /// calls; steps go frame to frame (splitting.hpp FrameToFrame).
+  bool frame_to_frame = false;
   std::vector<std::string> fluid_species;          ///< on the fluid wire (deterministic + fed back)
   std::vector<std::string> ssa_species;            ///< on the SSA wire (stochastic)
   std::vector<std::string> back_transfer_species;  ///< stochastic species the fluid reads

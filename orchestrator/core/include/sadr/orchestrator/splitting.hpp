@@ -9,6 +9,7 @@
 /// told the absolute end time, the fluid the interval length.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -64,6 +65,24 @@ double time_snap(double t, double tau, double end_time);
 /// @return nullopt when t has reached end_time (within time_snap())
 std::optional<CouplingStep> next_coupling_step(double t, double tau, double end_time,
                                                std::span<const double> output_times);
+
+/// A schedule that skips the coupling step (Plan::frame_to_frame: nothing
+/// moves and nothing is reset between SSA calls, so the length of an SSA call
+/// does not matter): besides the output times and the end, steps also end on
+/// every multiple of `checkpoint_every` (when > 0) and on `stop_at`.
+struct FrameToFrame {
+  double checkpoint_every = 0.0;                             ///< [time]; 0 = none
+  double stop_at = std::numeric_limits<double>::infinity();  ///< [time]
+};
+
+/// next_coupling_step() of a frame-to-frame schedule: one step from t to the
+/// first of the next output time, end time, checkpoint time and stop time,
+/// however far away; `tau` only sets time_snap(). Targets within time_snap()
+/// of each other are one target (the output or end time wins).
+/// @param frame_to_frame nullptr: the same as next_coupling_step(t, tau, end_time, output_times)
+std::optional<CouplingStep> next_coupling_step(double t, double tau, double end_time,
+                                               std::span<const double> output_times,
+                                               const FrameToFrame* frame_to_frame);
 
 /// Length of next_coupling_step(); 0 when the run is finished [time].
 double next_step_length(double t, double tau, double end_time,
