@@ -207,6 +207,7 @@ int cmd_run(const CliOptions& o) {
     base.progress = !o.quiet;
     base.progress_label = std::string(name) + " ";
     const RunResult res = run_realization(scene, plan, o, r, out / name, nullptr, base);
+    if (!res.interrupted) summarize_at_end(out / name, o.quiet);
     return res.interrupted && g_interrupt ? kExitInterrupted : kExitOk;
   }
   if (r_count == 1) {
@@ -218,6 +219,7 @@ int cmd_run(const CliOptions& o) {
                    r.last_checkpoint ? r.last_checkpoint->string().c_str() : "(no checkpoint)");
       return g_interrupt ? kExitInterrupted : kExitOk;
     }
+    summarize_at_end(out, o.quiet);
     return kExitOk;
   }
 
@@ -281,6 +283,7 @@ int cmd_run(const CliOptions& o) {
   }
   std::fprintf(stderr, "sadr: %d realizations; ensemble mean/variance in %s\n", done.load(),
                (out / "ensemble").string().c_str());
+  if (!g_interrupt) summarize_at_end(out, o.quiet);
   return g_interrupt ? kExitInterrupted : kExitOk;
 }
 
@@ -307,6 +310,7 @@ int cmd_resume(const CliOptions& o) {
   RunOptions base;
   base.progress = !o.quiet;
   const RunResult r = run_realization(scene, plan, o, cp.manifest.realization, out, &cp, base);
+  if (!r.interrupted) summarize_at_end(out, o.quiet);
   return r.interrupted && g_interrupt ? kExitInterrupted : kExitOk;
 }
 

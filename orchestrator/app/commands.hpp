@@ -3,6 +3,7 @@
 /// The orchestrator's subcommands (run, resume, validate) and exit codes.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "sadr/orchestrator/coupled_run.hpp"
@@ -52,6 +53,12 @@ int cmd_run(const CliOptions& options);
 int cmd_resume(const CliOptions& options);
 /// Combines DIR/realization_*/frames/*.csv into DIR/ensemble/ (mean, variance).
 int cmd_ensemble(const CliOptions& options);
+
+/// `sadr summary DIR`: what a run or an ensemble did (summary_command.cpp).
+int cmd_summary(const CliOptions& options);
+/// The same table at the end of `sadr run` / `sadr resume` (stderr; nothing
+/// when `quiet`). A summary that cannot be made is a warning, not a failure.
+void summarize_at_end(const std::filesystem::path& dir, bool quiet);
 
 /// Maps an exception to an exit code and prints it ("sadr: error: ...").
 int report_failure(const std::exception& e);

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 
 #include "commands.hpp"
+#include "csv_cells.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/ensemble_accumulator.hpp"
 
@@ -23,18 +23,11 @@ struct CsvFrame {
   std::vector<SpeciesColumn> species;
 };
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
-  return out;
-}
-
 CsvFrame read_frame(const fs::path& path) {
   std::ifstream in(path);
   std::string line;
   if (!std::getline(in, line)) throw InvalidArgument(path.string() + ": empty file");
-  const auto header = split(line);
+  const auto header = split_csv_line(line);
   // time,id,kind,x,y,z,vx,vy,vz,density,mass,<species...>
   constexpr std::size_t kFirstSpecies = 11;
   if (header.size() < kFirstSpecies || header[0] != "time" || header[10] != "mass") {
@@ -47,7 +40,7 @@ CsvFrame read_frame(const fs::path& path) {
   std::size_t row = 1;
   while (std::getline(in, line)) {
     ++row;
-    const auto cells = split(line);
+    const auto cells = split_csv_line(line);
     if (cells.size() != header.size()) {
       throw InvalidArgument(path.string() + ":" + std::to_string(row) + ": " +
                             std::to_string(cells.size()) + " columns, expected " +

@@ -110,6 +110,14 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingDirectory);
 
+  auto* summary = app.add_subcommand(
+      "summary",
+      "what a run or ensemble did: species totals at the first and last frame, wall time per "
+      "stage, steps, sub-steps, events, outputs (also printed at the end of run/resume unless -q)");
+  summary->add_option("directory", o.directory, "the output directory of a run or an ensemble")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -132,6 +140,7 @@ int main(int argc, char** argv) {
     if (*validate) return cmd_validate(o);
     if (*run) return cmd_run(o);
     if (*ensemble) return cmd_ensemble(o);
+    if (*summary) return cmd_summary(o);
     return cmd_resume(o);
   } catch (const std::exception& e) {
     return report_failure(e);

@@ -1,0 +1,62 @@
+# SPDX-License-Identifier: MIT
+"""`sadr summary DIR` and the same table at the end of `sadr run` (not with -q),
+checked against the package's own reading of the run."""
+import re
+
+import numpy as np
+
+import sadr
+from conftest import static_scene
+
+
+def species_rows(text):
+    """{label: (first, last)} from the summary's species table."""
+    rows = {}
+    block = text.split("species totals", 1)[1].split("wall time per stage", 1)[0]
+    for line in block.splitlines()[2:]:
+        m = re.match(r"\s+(\S.*?)\s+(\S+)\s+(\S+)$", line)
+        if m:
+            rows[m.group(1)] = (float(m.group(2)), float(m.group(3)))
+    return rows
+
+
+def test_summary_of_a_run(tmp_path):
+    scene = static_scene(end=0.5, every=0.25)
+    scene.write(tmp_path / "s.yaml")
+    out = tmp_path / "run"
+    loud = sadr.run_cli(["run", tmp_path / "s.yaml", "-o", out])
+    quiet = sadr.run_cli(["run", tmp_path / "s.yaml", "-o", out, "--force", "-q"])
+    text = sadr.run_cli(["summary", out]).stdout
+    assert "sadr summary: " in loud.stderr and "sadr summary" not in quiet.stderr
+    assert loud.stderr[loud.stderr.index("sadr summary: "):].splitlines()[1:3] == text.splitlines()[1:3]
+    run = sadr.Run(out)
+    first, last = run.frame(0), run.frame(-1)
+    rows = species_rows(text)
+    assert rows["A"] == (first.species["A"].sum(), last.species["A"].sum())
+    amount = rows["B (amount, sum c V)"]
+    np.testing.assert_allclose(amount, [np.sum(f.species["B"] * f.volume) for f in (first, last)],
+                               rtol=1e-9)
+    steps = run.manifest["steps"]
+    assert f"t = 0.5: {steps} coupling steps, {run.manifest['fluid_substeps']} fluid sub-steps" in text
+    fluid = float(re.search(r"^\s+fluid\s+(\S+)", text, re.M).group(1))
+    assert abs(fluid - run.timings["fluid"]) <= 5e-4
+    assert f"{out}/run.json" in text and "static_reaction_diffusion.pvd" in text
+
+
+def test_summary_of_an_ensemble(static_ensemble):
+    text = sadr.run_cli(["summary", static_ensemble.path]).stdout
+    assert "ensemble: 4 realizations (4 with status ok)" in text
+    rows = species_rows(text)
+    mean_last = static_ensemble.mean_frame(-1)["A"][0].sum()
+    np.testing.assert_allclose(rows["A"][1], mean_last, rtol=1e-9)
+    steps = sum(r.manifest["steps"] for r in static_ensemble.runs)
+    assert f"{steps} coupling steps" in text
+
+
+def test_summary_refuses_other_folders(tmp_path):
+    try:
+        sadr.run_cli(["summary", tmp_path])
+    except sadr.InvalidInput as e:
+        assert "neither a run (run.json) nor an ensemble" in e.message
+    else:
+        raise AssertionError("sadr summary accepted an empty folder")
