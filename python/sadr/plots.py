@@ -87,15 +87,15 @@ def profile(frame, field: str, start, end, *, width=None, bins: int = 20, region
 
 
 def plot_profile(frame, field: str, start, end, *, width=None, bins: int = 20, region=None,
-                 reference=None, ax=None, label=None):
+                 reference=None, reference_label="reference", ax=None, label=None):
     """Profile of ``field`` along start -> end (see :func:`profile`); ``reference``
-    is an optional callable s -> value drawn as a line. Returns the Figure."""
+    is an optional callable s -> value drawn as a dashed line. Returns the Figure."""
     fig, ax = _axes(ax)
     s, mean, _ = profile(frame, field, start, end, width=width, bins=bins, region=region)
     ax.plot(s, mean, "o-", ms=4, label=label or f"{field} (t = {frame.time:g})")
     if reference is not None:
         fine = np.linspace(s[0], s[-1], 200)
-        ax.plot(fine, [reference(x) for x in fine], "k--", lw=1, label="reference")
+        ax.plot(fine, [reference(x) for x in fine], "k--", lw=1, label=reference_label)
     ax.set_xlabel(f"distance along {np.round(start, 3).tolist()} -> {np.round(end, 3).tolist()}")
     ax.set_ylabel(field)
     ax.legend()

@@ -12,6 +12,7 @@ Comments of the original file are not kept (PyYAML); the values are.
 from __future__ import annotations
 
 import copy
+import tempfile
 from pathlib import Path
 
 import yaml
@@ -111,9 +112,17 @@ class Scene:
         return self.write(Path(str(output).rstrip("/") + ".yaml"))
 
     def validate(self) -> str:
-        """`sadr validate`; returns its output (the plan). Invalid: sadr.InvalidInput
-        with the validator's file:line:column message."""
-        proc = run_cli(["validate", self._file()])
+        """`sadr validate`; returns its output (the plan). A scene changed since
+        it was loaded or written is validated from a temporary copy. Invalid:
+        sadr.InvalidInput with the validator's file:line:column message."""
+        if self.path and self._written == yaml.safe_dump(self.data):
+            proc = run_cli(["validate", self.path])
+            return proc.stderr + proc.stdout
+        with tempfile.TemporaryDirectory(prefix="sadr-scene-") as tmp:
+            path = Path(tmp) / f"{self.data.get('name', 'scene')}.yaml"
+            with open(path, "w", encoding="utf-8") as f:
+                yaml.safe_dump(self._data_for(path), f, sort_keys=False)
+            proc = run_cli(["validate", path])
         return proc.stderr + proc.stdout
 
     def run(self, output, *, realizations: int | None = None, realization: int | None = None,

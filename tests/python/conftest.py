@@ -15,6 +15,8 @@ import sadr  # noqa: E402
 EXAMPLES = REPO / "examples"
 # One OpenMP thread per service: the suite runs next to other ctest jobs.
 os.environ.setdefault("OMP_NUM_THREADS", "1")
+if os.environ.get("SADR_BIN"):  # absolute: some tests run sadr from other folders
+    os.environ["SADR_BIN"] = str(Path(os.environ["SADR_BIN"]).resolve())
 
 
 def pytest_report_header(config):
