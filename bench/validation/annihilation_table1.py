@@ -58,12 +58,61 @@ def read_rows(path):
         return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
-def reference(refs, np_, nb):
-    rows = [r for r in refs if int(r["Np"]) == np_ and float(r["Nb"]) == nb and r["t"] == "inf"]
+def reference(refs, np_, nb, t="inf"):
+    """u_A = a/C0 at the particles at time t ("inf": steady state)."""
+    def at(r):
+        return r["t"] == "inf" if t == "inf" else r["t"] != "inf" and abs(float(r["t"]) - t) < 1e-12
+    rows = [r for r in refs if int(r["Np"]) == np_ and float(r["Nb"]) == nb and at(r)]
     rows.sort(key=lambda r: float(r["x"]))
     if len(rows) != np_:
-        sys.exit(f"no t=inf reference for Np={np_}, Nb={nb} in the reference file")
+        sys.exit(f"no t={t} reference for Np={np_}, Nb={nb} in the reference file")
     return [float(r["uA"]) for r in rows]
+
+
+def realization_errors(sadr, np_, nb, realizations, end=4.0, seed=2019, refs_path=None,
+                       subsets=(10, 30, 100)):
+    """One `sadr run -r R` of the Table 1 scene; returns the paper metric of the
+    ensemble mean over the first r realizations for each r in `subsets` (<= R),
+    of one realization (r = 1), the CPU time of the whole run (sadr + services,
+    os.wait4) and the number of realizations."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from measure import run_measured
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    refs = [] if refs_path is None else read_rows(refs_path)
+    for name in ("annihilation_1d_subset.csv", "annihilation_1d_nb100_subset.csv"):
+        if refs_path is None:
+            refs += read_rows(os.path.join(root, "tests/data/refs", name))
+    # t >= 4 s is steady to 1e-7 (refs/README.md section 4): compare with t = inf.
+    ref = reference(refs, np_, nb, "inf" if end >= 4.0 else end)
+    work = tempfile.mkdtemp(prefix=f"sadr-table1-{np_}-")
+    try:
+        scene = os.path.join(work, "scene.yaml")
+        with open(scene, "w") as f:
+            f.write(SCENE.format(np=np_, dx=1.0 / (np_ - 1), nb=int(nb), end=end, seed=seed))
+        out = os.path.join(work, "out")
+        r = run_measured([sadr, "run", scene, "-r", str(realizations), "-q", "-o", out])
+        if r["rc"]:
+            sys.exit(f"sadr run failed (exit {r['rc']}) for Np={np_}")
+        finals = []
+        for k in range(realizations):
+            frames = os.path.join(out, f"realization_{k:04d}", "frames")
+            rows = read_rows(os.path.join(frames, sorted(os.listdir(frames))[-1]))
+            rows.sort(key=lambda row: int(row["id"]))
+            finals.append([float(row["A"]) for row in rows])
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    errors, noise = {}, {}
+    grand = [sum(f[i] for f in finals) / realizations for i in range(np_)]
+    var = [sum((f[i] - grand[i]) ** 2 for f in finals) / max(1, realizations - 1)
+           for i in range(np_)]
+    for n in sorted({1, *[s for s in subsets if s <= realizations], realizations}):
+        mean = [sum(f[i] for f in finals[:n]) / n for i in range(np_)]
+        err2 = sum((mean[i] / nb - ref[i]) ** 2 for i in range(1, np_ - 1))
+        errors[n] = math.sqrt(err2) / (np_ - 1)
+        # The metric's expected value from noise alone (refs/README.md section 8).
+        noise[n] = math.sqrt(sum(var[i] / n for i in range(1, np_ - 1))) / nb / (np_ - 1)
+    return {"Np": np_, "N_b": nb, "realizations": realizations, "end": end, "errors": errors,
+            "noise": noise, "cpu_s": r["cpu_s"], "wall_s": r["wall_s"]}
 
 
 def main():

@@ -1,0 +1,199 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: MIT
+"""Regenerates docs/validation.md and its plots (docs/validation/*.png) in one go.
+
+    bench/validation/report.py --quick   # about 20 min on 2 cores
+    bench/validation/report.py --full    # hours (Table 1 SSA at N_b = 1e4, R = 100, N = 65)
+        [--build build/release] [--without BIN] [--out docs]
+
+Needs a build with the tests and benchmarks (cmake --preset release; the
+default), /usr/bin/python3 with numpy and matplotlib (deploy/install-deps.sh).
+Every row names the command that produced it and the commit; cost is CPU
+time (user + sys of the process tree, bench/validation/measure.py), because
+wall time on a shared machine measures the other users. Run it in a quiet
+window for figures to quote. The pieces:
+
+  * gtest validations (ctest -L validation) and the exact statistical checks of
+    the default suite, run binary by binary; their RESULT/printf lines are the
+    measured errors;
+  * drawert2019 Table 1: deterministic (AnnihilationValidation + the
+    fluid_error_sweep benchmark) and SSA (annihilation_table1.py) with a
+    work-precision diagram against the paper's points and the paper code's cost;
+  * Poiseuille start-up error against resolution (fluid_error_sweep) and the
+    example's centre-line speed (poiseuille_example.py);
+  * the plan's skips with and without (skip_bench.py; needs a build from before
+    the skip, --without; otherwise the stored bench/results/skip_frame_to_frame.md).
+"""
+import argparse
+import datetime
+import json
+import os
+import pathlib
+import re
+import sys
+import tempfile
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from measure import ROOT, commit, run_measured  # noqa: E402
+import annihilation_table1  # noqa: E402
+import poiseuille_example  # noqa: E402
+import wp_plots  # noqa: E402
+
+# drawert2019 Table 1 and the paper code's cost on this machine type (issue #20).
+PAPER_SDPD = {17: 1.856e-4, 33: 1.698e-4, 65: 2.325e-4}
+PAPER_SSA = {17: 7.285e-4, 33: 5.334e-4, 65: 6.644e-4}  # 100 realizations
+PAPER_SSA_ONE = {17: 3.5e-3, 33: 2.6e-3, 65: 1.4e-3}  # one realization
+PAPER_COST_ONE = {17: 0.72, 33: 1.22, 65: 6.08}  # s, one realization of 10,000 steps
+
+# (id, binary under build/tests, gtest filter, in --quick, reference, paper figure, docs)
+GTESTS = [
+    ("diffusion", "fluid/fluid_validation_tests", "DiffusionValidation.*", True,
+     "erf step with no-flux images, Dirichlet and Neumann series (refs cases 1-3)",
+     "li2015 Fig. 3-4 (diffusion)", "docs/fluid-core.md"),
+    ("annihilation_det", "fluid/fluid_validation_tests", "AnnihilationValidation.*", True,
+     "6th-order PDE reference and the semi-discrete ODE (refs case 4)",
+     "drawert2019 Table 1, SDPD column", "docs/fluid-core.md"),
+    ("poiseuille", "fluid/fluid_validation_tests", "Walls/PoiseuilleValidation.*", True,
+     "Morris, Fox & Zhu 1997 series (refs case 5)", "drawert2019 Fig. 2 (start-up)",
+     "docs/fluid-core.md"),
+    ("equipartition", "fluid/fluid_validation_tests", "Dims/Equipartition.*", True,
+     "k_B T_kin = k_B T (fluctuation-dissipation)", "-", "docs/fluid-core.md"),
+    ("open_channel", "fluid/fluid_validation_tests", "OpenChannelValidation.*", False,
+     "plane Poiseuille profile", "-", "docs/fluid-core.md"),
+    ("ssa_validation", "ssa/ssa_validation_tests", "*", True,
+     "exact mean/variance (expm, FSP), refs rdme_linear_mean.py", "-", "docs/ssa-core.md"),
+    ("tdpd_diffusion", "fluid_tdpd/fluid_tdpd_validation_tests", "*", False,
+     "erf step; li2015 D(kappa) fit D = 0.0187 + 0.771 kappa", "li2015 Fig. 3, eq. 18",
+     "docs/tdpd.md"),
+    ("tdpd_walls", "fluid_tdpd/fluid_tdpd_walls_validation_tests", "*", False,
+     "Dirichlet/Neumann series (refs cases 2-3), Poiseuille", "li2015 Fig. 5-6", "docs/tdpd.md"),
+    ("tdpd_adr", "fluid_tdpd/fluid_tdpd_adr_validation_tests", "*", False,
+     "converged finite-volume advection-diffusion", "li2015 Fig. 8 (Pe sweep)", "docs/tdpd.md"),
+    # Exact statistical checks of the default suite (Bonferroni z tests, stated false-failure rates).
+    ("ssa_exact_stats", "ssa/ssa_property_tests", "*", True,
+     "exact moments: birth-death, dimerisation (FSP), linear networks, MSD, reservoirs, "
+     "NSM vs direct", "-", "docs/ssa-core.md"),
+    ("splitting_e2e", "e2e/e2e_splitting_tests", "*", True,
+     "exact quadrature of N(t) implied by Lie / Strang", "-", "ARCHITECTURE.md"),
+]
+
+
+def run_gtest(build, binary, flt, work):
+    exe = build / "tests" / binary
+    log = work / (binary.replace("/", "_") + re.sub(r"\W", "_", flt) + ".log")
+    r = run_measured([exe, f"--gtest_filter={flt}"], cwd=exe.parent, log=log)
+    text = log.read_text(errors="replace")
+    lines = []
+    for line in text.splitlines():
+        s = line.strip()
+        if not s or s.startswith("[") or s.startswith("Note:") or s.startswith("Running main"):
+            continue
+        lines.append(s[len("RESULT "):] if s.startswith("RESULT ") else s)
+    passed = re.findall(r"^\[\s+OK \] (\S+)", text, re.M)
+    failed = re.findall(r"^\[  FAILED  \] (\S+) \(", text, re.M)
+    skipped = re.findall(r"^\[  SKIPPED \] (\S+)", text, re.M)
+    return {"rc": r["rc"], "cpu_s": r["cpu_s"], "lines": lines, "passed": passed,
+            "failed": failed, "skipped": skipped,
+            "command": f"{exe.relative_to(ROOT) if exe.is_relative_to(ROOT) else exe} "
+                       f"--gtest_filter='{flt}'"}
+
+
+def kv(line):
+    return dict(re.findall(r"(\S+?)=(\S+)", line))
+
+
+def fluid_error_sweep(build, work):
+    exe = build / "bench/fluid/fluid_error_sweep"
+    log = work / "fluid_error_sweep.csv"
+    r = run_measured([exe], log=log)
+    rows = [l.split(",") for l in log.read_text().splitlines()[1:] if l.count(",") == 5]
+    return {"cpu_s": r["cpu_s"], "command": str(exe.relative_to(ROOT) if exe.is_relative_to(ROOT) else exe),
+            "rows": [{"case": c, "res": int(n), "dt": float(dt), "error": float(e),
+                      "cpu_s": float(cpu)} for c, n, dt, e, cpu, _ in rows]}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    mode = ap.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--quick", action="store_true")
+    mode.add_argument("--full", action="store_true")
+    ap.add_argument("--build", default=str(ROOT / "build/release"))
+    ap.add_argument("--without", default="/work/baseline/build/release/bin",
+                    help="bin/ of a build without the frame-to-frame skip (skip table)")
+    ap.add_argument("--out", default=str(ROOT / "docs"))
+    ap.add_argument("--only", default="",
+                    help="comma-separated gtest ids to run (default: all of the mode); "
+                         "'none' for none (a quick look at the rest)")
+    ap.add_argument("--ssa", default="",
+                    help="Table 1 SSA cases N:N_b:R:t_end,... instead of the mode's")
+    a = ap.parse_args()
+    only = set(filter(None, a.only.split(",")))
+    build = pathlib.Path(a.build).resolve()
+    out = pathlib.Path(a.out)
+    figs = out / "validation"
+    figs.mkdir(parents=True, exist_ok=True)
+    work = pathlib.Path(tempfile.mkdtemp(prefix="sadr-report-"))
+    sadr = build / "bin" / "sadr"
+    quick = a.quick
+    rev = commit()
+    cmd = "bench/validation/report.py " + ("--quick" if quick else "--full")
+    started = datetime.datetime.now(datetime.timezone.utc)
+    data = {"commit": rev, "mode": "quick" if quick else "full", "gtests": {}}
+
+    def step(msg):
+        print(f"[{datetime.datetime.now():%H:%M:%S}] {msg}", flush=True)
+
+    for gid, binary, flt, in_quick, *_ in GTESTS:
+        if (only and gid not in only) or (not only and quick and not in_quick):
+            continue
+        step(f"gtest {gid}")
+        data["gtests"][gid] = run_gtest(build, binary, flt, work)
+
+    step("fluid_error_sweep")
+    data["sweep"] = fluid_error_sweep(build, work)
+
+    # Table 1 SSA: one ensemble per (N, N_b); the error of the first r realizations.
+    # (N, N_b, R, end): t = 1 s is the paper code's 10,000 steps of 1e-4 s (its quoted cost);
+    # t = 4 s is steady (the t = inf reference).
+    ssa_cases = ([(17, 1e3, 30, 1.0), (33, 1e3, 30, 1.0), (17, 1e4, 10, 1.0), (17, 1e2, 30, 1.0),
+                  (17, 1e3, 30, 4.0)] if quick else
+                 [(n, nb, 100, 1.0) for n in (17, 33, 65) for nb in (1e2, 1e3, 1e4)] +
+                 [(n, 1e3, 100, 4.0) for n in (17, 33, 65)])
+    if a.ssa:
+        ssa_cases = [(int(n), float(nb), int(r), float(t)) for n, nb, r, t in
+                     (c.split(":") for c in a.ssa.split(","))]
+    data["ssa"] = []
+    for np_, nb, r, end in ssa_cases:
+        step(f"Table 1 SSA N={np_} N_b={nb:g} R={r} t={end:g}")
+        res = annihilation_table1.realization_errors(str(sadr), np_, nb, r, end=end)
+        res["errors"] = {int(k): v for k, v in res["errors"].items()}
+        data["ssa"].append(res)
+
+    step("poiseuille example")
+    data["poiseuille_example"] = poiseuille_example.measure(build / "bin")
+
+    skip_json = ROOT / "bench/results/skip_frame_to_frame.json"
+    if pathlib.Path(a.without, "sadr").exists():
+        step("skip bench")
+        run_measured([sys.executable, ROOT / "bench/validation/skip_bench.py", "--without",
+                      a.without, "--with", build / "bin", "--pairs", "3" if quick else "5"])
+    data["skips"] = json.loads(skip_json.read_text()) if skip_json.exists() else None
+
+    step("plots")
+    plots = wp_plots.make_all(data, figs, PAPER_SDPD, PAPER_SSA, PAPER_SSA_ONE, PAPER_COST_ONE)
+    (work / "data.json").write_text(json.dumps(data, indent=1, default=str))
+    elapsed = (datetime.datetime.now(datetime.timezone.utc) - started).total_seconds()
+    write_markdown(out / "validation.md", data, plots, cmd, rev, started, elapsed, build, quick)
+    (figs / "data.json").write_text(json.dumps(data, indent=1, default=str) + "\n")
+    step(f"wrote {out / 'validation.md'} in {elapsed / 60:.1f} min")
+
+
+def write_markdown(path, d, plots, cmd, rev, started, elapsed, build, quick):
+    import wp_tables  # the markdown, kept apart from the running
+    path.write_text(wp_tables.render(d, plots, cmd, rev, started, elapsed, build, quick,
+                                     PAPER_SDPD, PAPER_SSA, PAPER_SSA_ONE, PAPER_COST_ONE, GTESTS))
+
+
+if __name__ == "__main__":
+    main()
