@@ -17,6 +17,7 @@ if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.b
     matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from pathlib import Path  # noqa: E402
 
 from .frames import KIND_NAMES  # noqa: E402
 from .regions import as_region  # noqa: E402
@@ -153,4 +154,41 @@ def plot_sweep(table, parameter: str, observable: str, *, time=None, confidence:
     ax.set_xlabel(parameter)
     ax.set_ylabel(f"{observable} at t = {time:g}")
     ax.legend()
+    return fig
+
+
+def overview(run, species: str | None = None):
+    """A one-figure look at a run: ``species`` (default: the first) at the first
+    and at the last frame, the speed at the last frame, and the x-velocity
+    profile across the fluid at the last frame (2D/3D runs); for a 1D run, the
+    species along x at both frames. Returns the Figure."""
+    first, last = run.frame(0), run.frame(-1)
+    species = species or next(iter(last.species), None)
+    extent = np.ptp(last.positions, axis=0) if len(last) else np.zeros(3)
+    name = run.manifest.get("scene_path", "")
+    title = f"{Path(name).stem or run.path.name}: t = {first.time:g} -> {last.time:g}"
+    if np.count_nonzero(extent > 0) < 2:
+        fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
+        for f in (first, last):
+            order = np.argsort(f.positions[:, 0])
+            ax.plot(f.positions[order, 0], f.field(species)[order], ".-", label=f"t = {f.time:g}")
+        ax.set_xlabel("x")
+        ax.set_ylabel(species)
+        ax.legend()
+        fig.suptitle(title)
+        return fig
+    fig, axes = plt.subplots(2, 2, figsize=(10, 8), layout="constrained")
+    if species:
+        plot_particles(first, color=species, ax=axes[0, 0])
+        plot_particles(last, color=species, ax=axes[0, 1])
+    plot_particles(last, color="speed", arrows=True, ax=axes[1, 0])
+    fluid = last.kinds == KIND_NAMES.index("fluid")
+    p = last.positions[fluid] if fluid.any() else last.positions
+    lo, hi = p.min(axis=0), p.max(axis=0)
+    mid = 0.5 * (lo[0] + hi[0])
+    rows = max(2, int(round(np.sqrt(max(1, fluid.sum())))))
+    plot_profile(last, "vx", [mid, lo[1]], [mid, hi[1]], width=0.5 * (hi[0] - lo[0]) + 1e-12,
+                 bins=min(20, rows), region="fluid", ax=axes[1, 1])
+    axes[1, 1].set_title(f"x-velocity across the fluid, mean over x (t = {last.time:g})")
+    fig.suptitle(title)
     return fig

@@ -63,3 +63,34 @@ def test_sweep_plot(tmp_path):
     np.testing.assert_array_equal(line.get_xdata(), [1.0, 2.0, 4.0])
     np.testing.assert_allclose(line.get_ydata(), table.groupby("k")["A"].mean().to_numpy())
     png(fig, tmp_path / "sweep.png")
+
+
+def test_overview_and_module_cli(tmp_path, poiseuille_runs):
+    """`python3 -m sadr plot RUN` (Quick start command (1)) writes the overview PNG."""
+    import subprocess
+    import sys
+
+    run = poiseuille_runs["binary"]
+    fig = sadr.plots.overview(run)
+    assert len([a for a in fig.axes if a.get_label() != "<colorbar>"]) == 4
+    out = tmp_path / "overview.png"
+    proc = subprocess.run([sys.executable, "-m", "sadr", "plot", str(run.path), "-o", str(out)],
+                          capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    bad = subprocess.run([sys.executable, "-m", "sadr", "plot", str(tmp_path)],
+                         capture_output=True, text=True)
+    assert bad.returncode == 1 and "neither a run" in bad.stderr
+
+
+def test_overview_1d(tmp_path):
+    from conftest import EXAMPLES
+
+    s = sadr.Scene.load(EXAMPLES / "annihilation_1d_stochastic.yaml")
+    s["time.end"] = 0.02
+    s["output.times"] = [0.0, 0.02]
+    run = s.run(tmp_path / "ann")
+    fig = sadr.plots.overview(run)
+    lines = fig.axes[0].lines
+    assert len(lines) == 2
+    np.testing.assert_array_equal(np.sort(lines[1].get_xdata()), np.sort(run.frame(-1).positions[:, 0]))

@@ -1,0 +1,44 @@
+# SPDX-License-Identifier: MIT
+"""`python3 -m sadr plot RUN [-o PNG] [--species S]`: the overview figure of a
+run (sadr.plots.overview) as a PNG; `python3 -m sadr series RUN`: the species
+totals per frame as CSV on stdout."""
+import argparse
+import sys
+from pathlib import Path
+
+from . import open_output
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python3 -m sadr", description=__doc__)
+    sub = ap.add_subparsers(dest="command", required=True)
+    plot = sub.add_parser("plot", help="overview PNG of a run")
+    plot.add_argument("run", type=Path, help="output directory of `sadr run`")
+    plot.add_argument("-o", "--output", type=Path, help="PNG path (default: RUN/overview.png)")
+    plot.add_argument("--species", help="species to colour by (default: the first)")
+    plot.add_argument("--dpi", type=int, default=80)
+    series = sub.add_parser("series", help="species totals per frame (CSV)")
+    series.add_argument("run", type=Path)
+    args = ap.parse_args(argv)
+    try:
+        run = open_output(args.run)
+    except (FileNotFoundError, ValueError) as e:
+        print(f"python3 -m sadr: error: {e}", file=sys.stderr)
+        return 1
+    if not hasattr(run, "frame"):
+        print(f"python3 -m sadr: error: {args.run} is not a single run (pick one realization_NNNN)",
+              file=sys.stderr)
+        return 1
+    if args.command == "series":
+        run.series().to_csv(sys.stdout)
+        return 0
+    from .plots import overview
+
+    out = args.output or args.run / "overview.png"
+    overview(run, args.species).savefig(out, dpi=args.dpi)
+    print(f"python3 -m sadr: wrote {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
