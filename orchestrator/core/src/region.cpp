@@ -18,6 +18,8 @@ std::string_view to_string(RegionShape shape) {
       return "annulus";
     case RegionShape::kChannel:
       return "channel";
+    case RegionShape::kIds:
+      return "ids";
   }
   return "unknown";
 }
@@ -41,17 +43,26 @@ bool Region::contains(const std::array<double, 3>& x, int dimension, double tol)
     }
     case RegionShape::kChannel:
       return x[axis] >= axis_lower - tol && x[axis] <= axis_upper + tol;
+    case RegionShape::kIds:
+      return false;
   }
   return false;
 }
 
 void resolve_membership(Region& region, const ParticleState& particles, double tol) {
   region.particles.clear();
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    if (!region.kinds.empty() && std::find(region.kinds.begin(), region.kinds.end(),
-                                           particles.kind(i)) == region.kinds.end()) {
-      continue;
+  auto kind_ok = [&](std::size_t i) {
+    return region.kinds.empty() || std::find(region.kinds.begin(), region.kinds.end(),
+                                             particles.kind(i)) != region.kinds.end();
+  };
+  if (region.shape == RegionShape::kIds) {
+    for (const std::uint32_t i : region.ids) {
+      if (i < particles.size() && kind_ok(i)) region.particles.push_back(i);
     }
+    return;
+  }
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (!kind_ok(i)) continue;
     const std::array<double, 3> x{particles.positions[3 * i], particles.positions[3 * i + 1],
                                   particles.positions[3 * i + 2]};
     if (region.contains(x, particles.dimension, tol)) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <set>
+#include <span>
 
 #include "sadr/common/status.hpp"
 #include "sadr/orchestrator/reaction_equation.hpp"
@@ -15,7 +16,8 @@ namespace {
 
 constexpr std::array<std::string_view, 5> kSpeciesKeys{"name", "stochastic", "diffusivity",
                                                        "initial", "boundaries"};
-constexpr std::array<std::string_view, 3> kInitialKeys{"region", "count", "concentration"};
+constexpr std::array<std::string_view, 5> kInitialKeys{"region", "count", "concentration",
+                                                       "count_column", "concentration_column"};
 constexpr std::array<std::string_view, 4> kBoundaryKeys{"region", "condition", "value", "count"};
 constexpr std::array<std::string_view, 5> kConditions{"dirichlet", "neumann", "none", "free",
                                                       "inflow"};
@@ -26,6 +28,64 @@ constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "
 /// Copy number for a concentration in particle i: nearest whole number of C V_i.
 double to_count(const ParticleState& p, std::size_t i, double concentration) {
   return std::round(concentration * p.volume(i));
+}
+
+/// `count_column` / `concentration_column` of an initial entry: per-particle
+/// values from a column of the particle file. False if the entry has neither.
+bool read_initial_column(SceneContext& ctx, const Field& f, Species& sp, const Region* rg) {
+  YamlReader& r = ctx.reader;
+  const bool is_count = YamlReader::present(YamlReader::child(f, "count_column"));
+  const std::string_view key = is_count ? "count_column" : "concentration_column";
+  const Field cf = YamlReader::child(f, key);
+  if (!YamlReader::present(cf)) return false;
+  const auto name = r.string(f, key, true);
+  if (!name) return true;
+  if (!ctx.particle_file_field) {
+    r.error(cf, "needs a particle file (particles.file); a lattice has no columns");
+    return true;
+  }
+  auto it = std::find_if(ctx.extra_columns.begin(), ctx.extra_columns.end(),
+                         [&](const auto& c) { return c.name == *name; });
+  if (it == ctx.extra_columns.end()) {
+    std::vector<std::string_view> known;
+    for (const auto& c : ctx.extra_columns) known.push_back(c.name);
+    std::string msg = "the particle file '" + ctx.particle_file + "' has no column '" + *name + "'";
+    if (auto near = nearest_name(*name, known)) msg += "; did you mean '" + *near + "'?";
+    msg += " (value columns: " + (known.empty() ? std::string("none") : join_names(known)) + ")";
+    r.error(cf, msg);
+    return true;
+  }
+  it->used = true;
+  if (!rg || !ctx.particles_ok) return true;
+  const ParticleState& p = ctx.scene.particles;
+  std::size_t reported = 0;
+  for (const std::uint32_t i : rg->particles) {
+    const double v = it->values[i];
+    std::string bad;
+    if (!(v >= 0.0)) {
+      bad = "is out of range; allowed: >= 0";
+    } else if (is_count && sp.stochastic && v != std::floor(v)) {
+      bad = "is not allowed for the stochastic species '" + sp.name +
+            "'; allowed: a whole number >= 0";
+    }
+    if (!bad.empty()) {
+      if (++reported <= 5) {
+        r.error(cf, ctx.particle_file + ":" + std::to_string(ctx.particle_lines[i]) + ": column '" +
+                        *name + "': " + format_number(v) + " " + bad);
+      }
+      continue;
+    }
+    if (is_count) {
+      sp.initial[i] = sp.stochastic ? v : v / p.volume(i);
+    } else {
+      sp.initial[i] = sp.stochastic ? to_count(p, i, v) : v;
+    }
+  }
+  if (reported > 5) {
+    r.error(cf, ctx.particle_file + ": " + std::to_string(reported - 5) +
+                    " more bad values in column '" + *name + "'");
+  }
+  return true;
 }
 
 void read_initial(SceneContext& ctx, const Field& sp_field, Species& sp) {
@@ -39,17 +99,26 @@ void read_initial(SceneContext& ctx, const Field& sp_field, Species& sp) {
     if (!r.expect_map(f, kInitialKeys)) continue;
     const std::string name = r.string(f, "region", false).value_or(std::string(kAllRegion));
     const Region* rg = lookup_region(ctx, YamlReader::child(f, "region"), name);
+    int given = 0;
+    for (const auto key : std::span(kInitialKeys).subspan(1)) {
+      given += YamlReader::present(YamlReader::child(f, key)) ? 1 : 0;
+    }
+    if (given != 1) {
+      r.error(f,
+              "give exactly one of 'count' (molecules per particle), 'concentration' "
+              "(molecules/length^d), 'count_column' or 'concentration_column' (a column of the "
+              "particle file)");
+      continue;
+    }
+    if (rg && ctx.particles_ok && rg->particles.empty()) {
+      r.error(YamlReader::child(f, "region"),
+              "region '" + name + "' holds no particle; an initial value needs at least one");
+      continue;
+    }
+    if (read_initial_column(ctx, f, sp, rg)) continue;
     const auto count = r.number(f, "count", Bound::kNonNegative, "molecules per particle", false);
     const auto conc =
         r.number(f, "concentration", Bound::kNonNegative, "molecules/length^d", false);
-    const bool has_count = YamlReader::present(YamlReader::child(f, "count"));
-    const bool has_conc = YamlReader::present(YamlReader::child(f, "concentration"));
-    if (has_count == has_conc) {
-      r.error(f,
-              "give exactly one of 'count' (molecules per particle) or 'concentration' "
-              "(molecules/length^d)");
-      continue;
-    }
     if (count && sp.stochastic && *count != std::floor(*count)) {
       r.error(YamlReader::child(f, "count"), format_number(*count) +
                                                  " is not allowed for the stochastic species '" +
@@ -272,6 +341,13 @@ void read_species(SceneContext& ctx, const Field& root) {
       read_boundaries(ctx, f, sp);
       ctx.scene.species.push_back(std::move(sp));
     }
+  }
+  for (const auto& c : ctx.extra_columns) {
+    if (c.used) continue;
+    r.error(*ctx.particle_file_field,
+            ctx.particle_file + ":1: unknown column '" + c.name +
+                "' (allowed: x, y, z, mass, density, kind, vx, vy, vz, or a column read by a "
+                "species' initial count_column or concentration_column)");
   }
   if (ctx.boussinesq && ctx.scene.fluid.boussinesq) {
     const std::string& name = ctx.scene.fluid.boussinesq->species;

@@ -75,6 +75,11 @@ void build_lattice(SceneContext& ctx, const Field& particles, double dx, double 
                 "region '" + name +
                     "' has a kinds filter, which has no meaning before particles exist; use a "
                     "region without 'kinds' to fill the lattice");
+      } else if (rule.region && rule.region->shape == RegionShape::kIds) {
+        r.error(YamlReader::child(f, "region"),
+                "region '" + name +
+                    "' lists particle ids, which do not exist before the lattice is filled; "
+                    "use a region with a shape");
       }
       if (auto k = r.choice(f, "kind", kKindNames, false, "particle kind")) {
         rule.kind = *parse_kind(*k);
@@ -158,18 +163,37 @@ void read_particle_file(SceneContext& ctx, const Field& file_field, const std::s
   }
   std::istringstream rows(ctx.particle_file_bytes);
   std::string line;
-  std::getline(rows, line);
+  const std::string where0 = path.string() + ":1: ";
+  if (!std::getline(rows, line) || line.find_first_not_of(" \t\r") == std::string::npos) {
+    r.error(file_field, where0 +
+                            "empty header row; the first line must name the columns x, y, "
+                            "z, mass, density, kind (and optionally vx, vy, vz)");
+    return;
+  }
   const auto header = split_csv_line(line);
   std::map<std::string, std::size_t> col;
-  const std::string where0 = path.string() + ":1: ";
+  std::vector<std::pair<std::size_t, std::size_t>> extra;  // (csv column, extra_columns index)
   for (std::size_t c = 0; c < header.size(); ++c) {
-    if (std::find(kColumns.begin(), kColumns.end(), header[c]) == kColumns.end()) {
-      r.error(file_field, where0 + "unknown column '" + header[c] +
-                              "' (allowed: x, y, z, mass, density, kind, vx, vy, vz)");
-    } else {
+    if (col.count(header[c])) {
+      r.error(file_field, where0 + "column '" + header[c] + "' appears twice (columns " +
+                              std::to_string(col[header[c]] + 1) + " and " + std::to_string(c + 1) +
+                              "); each column must be named once");
+    } else if (std::find(kColumns.begin(), kColumns.end(), header[c]) != kColumns.end()) {
       col[header[c]] = c;
+    } else if (valid_identifier(header[c])) {
+      // a species value column, checked against the species' initial entries later
+      col[header[c]] = c;
+      extra.emplace_back(c, ctx.extra_columns.size());
+      ctx.extra_columns.push_back({header[c], {}, false});
+    } else {
+      r.error(file_field, where0 + "column '" + header[c] +
+                              "' is not a column name (allowed: x, y, z, mass, density, kind, vx, "
+                              "vy, vz, or a name [A-Za-z_][A-Za-z0-9_]* read by a species' "
+                              "count_column or concentration_column)");
     }
   }
+  ctx.particle_file = path.string();
+  ctx.particle_file_field = file_field;
   bool columns_ok = true;
   for (const std::string_view need : {"x", "y", "z", "mass", "density", "kind"}) {
     if (!col.count(std::string(need))) {
@@ -243,6 +267,15 @@ void read_particle_file(SceneContext& ctx, const Field& file_field, const std::s
     p.masses.push_back(m);
     p.densities.push_back(rho);
     p.kinds.push_back(kind.value_or(ParticleKind::kFluid));
+    for (const auto& [c, e] : extra) {
+      ctx.extra_columns[e].values.push_back(number(header[c].c_str(), 0));
+    }
+    ctx.particle_lines.push_back(line_no);
+  }
+  if (p.kinds.empty() && reported == 0) {
+    r.error(file_field, path.string() + ":" + std::to_string(line_no + 1) +
+                            ": no particle rows after the header; the file must list at least "
+                            "one particle");
   }
   if (reported > 20) {
     r.error(file_field, path.string() + ": " + std::to_string(reported - 20) + " more problems");
@@ -299,6 +332,14 @@ void read_particles(SceneContext& ctx, const Field& root) {
   }
   s.particles.ids.resize(n);
   for (std::size_t i = 0; i < n; ++i) s.particles.ids[i] = i;
+  for (const auto& [index, field] : ctx.id_regions) {
+    const Region& rg = s.regions[index];
+    if (!rg.ids.empty() && rg.ids.back() >= n) {
+      r.error(field, "particle id " + std::to_string(rg.ids.back()) + " of region '" + rg.name +
+                         "' does not exist; allowed: ids 0 to " + std::to_string(n - 1) + " (" +
+                         std::to_string(n) + " particles)");
+    }
+  }
   const double tol = ctx.tolerance();
   resolve_membership(ctx.all_region, s.particles, tol);
   for (auto& rg : s.regions) resolve_membership(rg, s.particles, tol);

@@ -13,10 +13,11 @@ namespace sadr::orchestrator::detail {
 
 namespace {
 
-constexpr std::array<std::string_view, 5> kShapes{"box", "sphere", "disk", "annulus", "channel"};
-constexpr std::array<std::string_view, 10> kRegionKeys{
-    "name",   "shape",        "lower",        "upper", "center",
-    "radius", "inner_radius", "outer_radius", "axis",  "kinds"};
+constexpr std::array<std::string_view, 6> kShapes{"box",     "sphere",  "disk",
+                                                  "annulus", "channel", "ids"};
+constexpr std::array<std::string_view, 11> kRegionKeys{
+    "name",         "shape",        "lower", "upper", "center", "radius",
+    "inner_radius", "outer_radius", "axis",  "kinds", "ids"};
 constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
 constexpr std::array<std::string_view, 3> kAxisNames{"x", "y", "z"};
 
@@ -30,10 +31,40 @@ std::vector<std::string_view> shape_keys(RegionShape shape) {
       return {"center", "inner_radius", "outer_radius"};
     case RegionShape::kChannel:
       return {"axis", "lower", "upper"};
+    case RegionShape::kIds:
+      return {"ids"};
     case RegionShape::kAll:
       break;
   }
   return {};
+}
+
+/// `ids`: a non-empty list of distinct whole numbers (particle ids = particle
+/// CSV rows or lattice order); checked against the particle count later.
+void read_region_ids(SceneContext& ctx, const Field& f, Region& rg) {
+  YamlReader& r = ctx.reader;
+  const Field list = YamlReader::child(f, "ids");
+  if (!YamlReader::present(list)) {
+    r.error(list, "missing; required for shape 'ids': a list of particle ids, e.g. [0, 4, 7]");
+    return;
+  }
+  if (!list.node.IsSequence() || list.node.size() == 0) {
+    r.error(list, "expected a non-empty list of particle ids (whole numbers >= 0), e.g. [0, 4, 7]");
+    return;
+  }
+  std::set<std::uint32_t> seen;
+  for (std::size_t i = 0; i < list.node.size(); ++i) {
+    const Field e = YamlReader::element(list, i);
+    const auto v = r.number_at(e, Bound::kNonNegative, "particle id");
+    if (!v) continue;
+    if (*v != std::floor(*v) || *v > 4294967295.0) {
+      r.error(e, format_number(*v) + " is not a particle id; allowed: a whole number in [0, 2^32)");
+    } else if (!seen.insert(static_cast<std::uint32_t>(*v)).second) {
+      r.error(e, "particle id " + format_number(*v) + " is listed twice");
+    }
+  }
+  rg.ids.assign(seen.begin(), seen.end());
+  ctx.id_regions.emplace_back(ctx.scene.regions.size(), list);
 }
 
 void read_region_shape(SceneContext& ctx, const Field& f, Region& rg) {
@@ -102,6 +133,9 @@ void read_region_shape(SceneContext& ctx, const Field& f, Region& rg) {
       }
       break;
     }
+    case RegionShape::kIds:
+      read_region_ids(ctx, f, rg);
+      break;
     case RegionShape::kAll:
       break;
   }
@@ -138,6 +172,7 @@ void read_regions(SceneContext& ctx, const Field& root) {
                : *shape == "box"     ? RegionShape::kBox
                : *shape == "annulus" ? RegionShape::kAnnulus
                : *shape == "channel" ? RegionShape::kChannel
+               : *shape == "ids"     ? RegionShape::kIds
                                      : RegionShape::kSphere;
     if (auto kinds = r.string_list(f, "kinds", false)) {
       for (const auto& k : *kinds) {
@@ -149,7 +184,7 @@ void read_regions(SceneContext& ctx, const Field& root) {
         }
       }
     }
-    if (ctx.geometry_ok && shape) read_region_shape(ctx, f, rg);
+    if (shape && (ctx.geometry_ok || rg.shape == RegionShape::kIds)) read_region_shape(ctx, f, rg);
     ctx.scene.regions.push_back(std::move(rg));
   }
 }

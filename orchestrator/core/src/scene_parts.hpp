@@ -5,6 +5,9 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "sadr/orchestrator/scene.hpp"
 #include "yaml_reader.hpp"
@@ -24,6 +27,21 @@ struct SceneContext {
   std::string particle_file_bytes{};     ///< the particle CSV file, folded into the scene hash
   std::optional<Field> boussinesq{};     ///< fluid.boussinesq, checked once species are known
   std::optional<Field> open_boundary{};  ///< fluid.open_boundary, checked once h is known
+  /// Regions of shape `ids` (index into scene.regions, their `ids` field),
+  /// checked against the particle count once the particles exist.
+  std::vector<std::pair<std::size_t, Field>> id_regions{};
+  /// Particle CSV columns that are not particle properties (initial species
+  /// values read by `count_column` / `concentration_column`), one value per
+  /// particle; `used` is set by the species that read them.
+  struct ExtraColumn {
+    std::string name;
+    std::vector<double> values;
+    bool used = false;
+  };
+  std::vector<ExtraColumn> extra_columns{};
+  std::string particle_file{};                 ///< the particle CSV's path (for messages)
+  std::vector<int> particle_lines{};           ///< the CSV line of each particle
+  std::optional<Field> particle_file_field{};  ///< particles.file
   /// Absolute tolerance for region and box membership [length].
   [[nodiscard]] double tolerance() const;
 };

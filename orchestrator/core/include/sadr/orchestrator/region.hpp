@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file region.hpp
-/// Named geometric regions of a scene (box, sphere/disk, annulus, channel)
+/// Named regions of a scene (box, sphere/disk, annulus, channel, id list)
 /// and their resolution to particle indices (sadr.common.v1.RegionMembership).
 #pragma once
 
@@ -20,6 +20,7 @@ enum class RegionShape {
   kSphere,   ///< |x - center| <= radius (a disk in 2D, an interval in 1D)
   kAnnulus,  ///< inner_radius <= |x - center| <= radius (a spherical shell in 3D)
   kChannel,  ///< lower <= x[axis] <= upper (a slab, unbounded along the other axes)
+  kIds,      ///< an explicit list of particle ids (no geometry)
 };
 std::string_view to_string(RegionShape shape);
 
@@ -37,16 +38,18 @@ struct Region {
   int axis = 0;                          ///< channel: normal axis 0, 1, 2
   double axis_lower = 0.0;               ///< channel [length]
   double axis_upper = 0.0;               ///< channel [length]
+  std::vector<std::uint32_t> ids;        ///< kIds: the listed particle ids, ascending
   std::vector<ParticleKind> kinds;       ///< only these kinds are members; empty = any
   std::vector<std::uint32_t> particles;  ///< resolved members, ascending indices
 
   /// True when point x (3 components, unused axes ignored) is inside the
   /// shape, with the absolute tolerance `tol` [length]. Ignores `kinds`.
+  /// False for kIds (membership by id only).
   [[nodiscard]] bool contains(const std::array<double, 3>& x, int dimension, double tol) const;
 };
 
 /// Fills region.particles with the indices of the particles inside the shape
-/// whose kind is allowed.
+/// (kIds: the listed ids below particles.size()) whose kind is allowed.
 /// @param tol absolute boundary tolerance [length]
 void resolve_membership(Region& region, const ParticleState& particles, double tol);
 
