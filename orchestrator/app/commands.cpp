@@ -147,7 +147,7 @@ int report_failure(const std::exception& e) {
 
 int cmd_validate(const CliOptions& o) {
   try {
-    const Scene scene = load_scene(o.scene);
+    const Scene scene = load_scene(o.scene, parse_overrides(o.overrides));
     Plan plan = make_plan(scene);
     const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
     decide_overlap(plan, o.overlap, hw, fluid_threads(o, hw), 1);
@@ -162,7 +162,7 @@ int cmd_validate(const CliOptions& o) {
 
 int cmd_run(const CliOptions& o) {
   install_signal_handlers();
-  const Scene scene = load_scene(o.scene);
+  const Scene scene = load_scene(o.scene, parse_overrides(o.overrides));
   Plan plan = make_plan(scene);
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const int r_count = std::max(1, o.realizations);
@@ -290,7 +290,12 @@ int cmd_run(const CliOptions& o) {
 int cmd_resume(const CliOptions& o) {
   install_signal_handlers();
   LoadedCheckpoint cp = load_checkpoint(o.checkpoint, "");
-  const Scene scene = load_scene(cp.manifest.scene_path);
+  fs::path manifest_path = o.checkpoint;
+  if (fs::is_directory(manifest_path)) manifest_path /= std::string(kCheckpointManifestName);
+  const fs::path run_dir = manifest_path.parent_path().parent_path();
+  // The overrides of the run (run.json) make the same effective scene again.
+  const Scene scene =
+      load_scene(cp.manifest.scene_path, parse_overrides(read_run_overrides(run_dir)));
   if (scene.source_hash != cp.manifest.scene_hash) {
     throw InvalidArgument("checkpoint '" + o.checkpoint + "' was written for scene '" +
                           cp.manifest.scene_path + "' with hash " + cp.manifest.scene_hash +
@@ -300,10 +305,7 @@ int cmd_resume(const CliOptions& o) {
   Plan plan = make_plan(scene);
   configure_threads_and_overlap(plan, o, 1);
   print_plan(scene, plan, o);
-  fs::path manifest_path = o.checkpoint;
-  if (fs::is_directory(manifest_path)) manifest_path /= std::string(kCheckpointManifestName);
-  const fs::path out =
-      o.output.empty() ? manifest_path.parent_path().parent_path() : fs::path(o.output);
+  const fs::path out = o.output.empty() ? run_dir : fs::path(o.output);
   std::fprintf(stderr, "sadr: resuming realization %llu at t = %g (step %llu) into %s\n",
                static_cast<unsigned long long>(cp.manifest.realization), cp.manifest.time,
                static_cast<unsigned long long>(cp.manifest.step_index), out.string().c_str());

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "sadr/orchestrator/coupled_run.hpp"
 #include "service_set.hpp"
@@ -45,7 +46,8 @@ struct CliOptions {
   /// Run only this realization (a cluster array task); "" = all. "env" takes
   /// the index from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX.
   std::string realization;
-  std::string directory;  ///< ensemble: the output directory to combine
+  std::string directory;               ///< ensemble: the output directory to combine
+  std::vector<std::string> overrides;  ///< --set PATH=VALUE (run, validate)
 };
 
 int cmd_validate(const CliOptions& options);

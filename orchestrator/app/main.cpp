@@ -80,9 +80,17 @@ int main(int argc, char** argv) {
   auto* validate =
       app.add_subcommand("validate", "parse and check a scene; exit 0 if valid, 1 if not");
   validate->add_option("scene", o.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
+  auto add_set_option = [&](CLI::App* cmd) {
+    cmd->add_option("--set", o.overrides,
+                    "override a scene value before validation, PATH=VALUE (repeatable): "
+                    "fluid.sound_speed=20, reactions[annihilation].rate=0.2, "
+                    "species[0].diffusivity=0.1 (docs/cli.md)");
+  };
+  add_set_option(validate);
 
   auto* run = app.add_subcommand("run", "run a scene (one realization, or an ensemble)");
   run->add_option("scene", o.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
+  add_set_option(run);
   run->add_option("-r,--realizations", o.realizations,
                   "independent realizations with seeds derived from the scene seed; each in "
                   "realization_NNNN/, plus per-frame ensemble mean and variance in ensemble/")

@@ -159,6 +159,7 @@ class CoupledRun {
     }
     manifest_.scene_path = scene_.source_path.string();
     manifest_.scene_hash = scene_.source_hash;
+    manifest_.overrides = scene_.overrides;
     manifest_.scene_seed = scene_.seed;
     manifest_.realization = options.realization;
     manifest_.seed = seed_;

@@ -12,7 +12,23 @@
 
 namespace sadr::orchestrator {
 
+void Diagnostics::add_override(std::string resolved_path, std::string text) {
+  overrides_.emplace_back(std::move(resolved_path), std::move(text));
+}
+
+std::string Diagnostics::override_of(std::string_view field) const {
+  std::string found;
+  for (const auto& [path, text] : overrides_) {  // the last one wins, as when applied
+    const bool under = field.size() > path.size() && field.substr(0, path.size()) == path &&
+                       (field[path.size()] == '.' || field[path.size()] == '[');
+    if (field == path || under) found = text;
+  }
+  return found;
+}
+
 void Diagnostics::error(SourceLocation where, std::string_view field, std::string_view message) {
+  const std::string set_by = field.empty() ? std::string() : override_of(field);
+  if (!set_by.empty()) where = {};  // the value is not in the file
   std::string line = file_;
   if (where.line > 0) {
     line.push_back(':');
@@ -26,6 +42,7 @@ void Diagnostics::error(SourceLocation where, std::string_view field, std::strin
     line += ": ";
   }
   line.append(message);
+  if (!set_by.empty()) line += " (set by --set " + set_by + ")";
   messages_.push_back(std::move(line));
   where_.push_back(where);
 }

@@ -5,8 +5,10 @@
 
 #include <ctime>
 
+#include "sadr/common/status.hpp"
 #include "sadr/common/version.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
+#include "sadr/orchestrator/hash.hpp"
 
 namespace sadr::orchestrator {
 
@@ -22,6 +24,7 @@ nlohmann::json RunManifest::to_json() const {
           {"format_version", 1},
           {"scene_path", scene_path},
           {"scene_hash", scene_hash},
+          {"overrides", overrides},
           {"scene_seed", scene_seed},
           {"realization", realization},
           {"seed", seed},
@@ -43,6 +46,29 @@ nlohmann::json RunManifest::to_json() const {
 
 void RunManifest::write(const std::filesystem::path& path) const {
   write_file_atomic(path, to_json().dump(2) + "\n");
+}
+
+std::vector<std::string> read_run_overrides(const std::filesystem::path& run_dir) {
+  const std::filesystem::path path = run_dir / "run.json";
+  if (!std::filesystem::exists(path)) return {};
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(read_file_bytes(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw InvalidArgument(path.string() + ": not valid JSON: " + e.what());
+  }
+  if (!j.contains("overrides")) return {};
+  if (!j["overrides"].is_array()) {
+    throw InvalidArgument(path.string() + ": 'overrides' must be a list of PATH=VALUE texts");
+  }
+  std::vector<std::string> out;
+  for (const auto& v : j["overrides"]) {
+    if (!v.is_string()) {
+      throw InvalidArgument(path.string() + ": 'overrides' must be a list of PATH=VALUE texts");
+    }
+    out.push_back(v.get<std::string>());
+  }
+  return out;
 }
 
 std::string utc_now_iso8601() {

@@ -7,6 +7,7 @@
 
 #include "sadr/common/status.hpp"
 #include "sadr/orchestrator/hash.hpp"
+#include "scene_override_tree.hpp"
 #include "scene_parts.hpp"
 
 namespace sadr::orchestrator {
@@ -116,7 +117,8 @@ void read_ssa(SceneContext& ctx, const Field& root) {
 }  // namespace
 }  // namespace detail
 
-Scene parse_scene(std::string_view text, const std::filesystem::path& source_name) {
+Scene parse_scene(std::string_view text, const std::filesystem::path& source_name,
+                  std::span<const SceneOverride> overrides) {
   using namespace detail;
   Diagnostics diag(source_name.string());
   Scene scene;
@@ -127,6 +129,17 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
     doc = YAML::Load(std::string(text));
   } catch (const YAML::Exception& e) {
     diag.error({e.mark.line + 1, e.mark.column + 1}, "", "YAML syntax error: " + e.msg);
+    diag.throw_if_any();
+  }
+  // The effective scene: the file's bytes, then each override as written.
+  std::string effective(text);
+  for (const auto& o : overrides) {
+    effective += "\n--set " + o.text();
+    scene.overrides.push_back(o.text());
+  }
+  if (!overrides.empty()) {
+    scene.source_hash = content_hash(effective);
+    apply_overrides(doc, overrides, diag);
     diag.throw_if_any();
   }
   YamlReader reader(diag);
@@ -149,15 +162,15 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   scene.seed = reader.integer(root, "seed", 0, UINT64_MAX, false).value_or(0);
   if (!ctx.particle_file_bytes.empty()) {
     // A changed particle file is a changed scene (checkpoints refuse it).
-    scene.source_hash = content_hash(std::string(text) + ctx.particle_file_bytes);
+    scene.source_hash = content_hash(effective + ctx.particle_file_bytes);
   }
   diag.throw_if_any();
   return scene;
 }
 
-Scene load_scene(const std::filesystem::path& path) {
+Scene load_scene(const std::filesystem::path& path, std::span<const SceneOverride> overrides) {
   const std::string bytes = read_file_bytes(path);
-  return parse_scene(bytes, path);
+  return parse_scene(bytes, path, overrides);
 }
 
 // ---- small Scene members -------------------------------------------------

@@ -79,7 +79,12 @@ bool YamlReader::expect_map(const Field& f, std::span<const std::string_view> al
     std::string msg = "unknown key '" + key + "' in " + context;
     if (auto near = nearest_name(key, allowed)) msg += "; did you mean '" + *near + "'?";
     msg += " (allowed: " + join_names(allowed) + ")";
-    diag_.error(where, "", msg);
+    const std::string set_by = diag_.override_of(f.path.empty() ? key : f.path + "." + key);
+    if (set_by.empty()) {
+      diag_.error(where, "", msg);
+    } else {
+      diag_.error({}, "", msg + " (set by --set " + set_by + ")");
+    }
   }
   return true;
 }

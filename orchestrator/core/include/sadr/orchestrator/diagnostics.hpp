@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace sadr::orchestrator {
@@ -29,7 +30,15 @@ class Diagnostics {
 
   /// Records one problem. `field` is a path like "species[1].diffusivity";
   /// empty when the message already names its context.
+  /// A `field` at or under an overridden path (add_override) loses its file
+  /// position and gets " (set by --set PATH=VALUE)" appended.
   void error(SourceLocation where, std::string_view field, std::string_view message);
+
+  /// Declares that the node at `resolved_path` (as the loader spells it,
+  /// "reactions[0].rate") comes from the override `text` (scene_override.hpp).
+  void add_override(std::string resolved_path, std::string text);
+  /// The text of the override that set `field` or one of its parents ("" if none).
+  [[nodiscard]] std::string override_of(std::string_view field) const;
 
   [[nodiscard]] bool empty() const { return messages_.empty(); }
   [[nodiscard]] std::size_t size() const { return messages_.size(); }
@@ -43,8 +52,9 @@ class Diagnostics {
 
  private:
   std::string file_;
-  std::vector<std::string> messages_;  ///< in the order recorded
-  std::vector<SourceLocation> where_;  ///< parallel to messages_
+  std::vector<std::string> messages_;                           ///< in the order recorded
+  std::vector<SourceLocation> where_;                           ///< parallel to messages_
+  std::vector<std::pair<std::string, std::string>> overrides_;  ///< resolved path, text
 };
 
 /// Edit distance (insertions, deletions, substitutions, each cost 1).

@@ -16,7 +16,8 @@ namespace sadr::orchestrator {
 
 struct RunManifest {
   std::string scene_path;
-  std::string scene_hash;  ///< content_hash() of the scene file bytes
+  std::string scene_hash;  ///< content_hash() of the effective scene (file bytes + overrides)
+  std::vector<std::string> overrides;  ///< `--set` PATH=VALUE applied to the file, in order
   std::uint64_t scene_seed = 0;
   std::uint64_t realization = 0;
   std::uint64_t seed = 0;         ///< realization seed actually used
@@ -53,6 +54,10 @@ struct RunManifest {
   /// Writes to_json() to `path` atomically (pretty-printed).
   void write(const std::filesystem::path& path) const;
 };
+
+/// The `overrides` of `run_dir`/run.json ({} if the file or the key is absent).
+/// @throws sadr::InvalidArgument if run.json exists but cannot be read as JSON.
+std::vector<std::string> read_run_overrides(const std::filesystem::path& run_dir);
 
 /// Current UTC time as ISO 8601 ("YYYY-MM-DDTHH:MM:SSZ").
 std::string utc_now_iso8601();

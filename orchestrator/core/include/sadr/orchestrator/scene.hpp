@@ -141,6 +141,9 @@ struct Scene {
   /// "fnv1a64:<16 hex>" of the scene file bytes, followed by the bytes of
   /// the particle CSV file when the scene reads one.
   std::string source_hash;
+  /// Overrides applied to the file ("PATH=VALUE", in order; scene_override.hpp).
+  /// With overrides, source_hash covers them too: the hash of the effective scene.
+  std::vector<std::string> overrides;
   Box box;
   double lattice_spacing = 0.0;  ///< dx [length]; 0 when the particles came from a file
   ParticleState particles;       ///< ids = 0..N-1, velocities present
