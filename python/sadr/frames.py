@@ -108,6 +108,22 @@ def _kind_code(name) -> int:
         raise ValueError(f"unknown particle kind '{name}' (allowed: {', '.join(KIND_NAMES)})") from None
 
 
+def read_columns(path, integer_columns=("id", "realizations")) -> tuple:
+    """A sadr CSV (frame, ensemble or sweep aggregate) as (header, {column: array}):
+    float64 columns parsed exactly by numpy, ``integer_columns`` as integers
+    (id uint64, kind uint8, realizations int64; frames pass ("id", "kind"))."""
+    path = Path(path)
+    with open(path, encoding="ascii") as f:
+        header = f.readline().rstrip("\n").split(",")
+    types = {"id": np.uint64, "kind": np.uint8, "realizations": np.int64}
+    dtype = [(f"c{i}", types[n] if n in integer_columns else np.float64) for i, n in enumerate(header)]
+    try:
+        rows = np.loadtxt(path, delimiter=",", skiprows=1, dtype=dtype, ndmin=1)
+    except ValueError as e:
+        raise FrameFormatError(f"{path}: {e}") from None
+    return header, {n: rows[f"c{i}"].copy() for i, n in enumerate(header)}
+
+
 def read_frame(path) -> Frame:
     """Reads a .csv, .vtu or .vtp frame by its extension."""
     path = Path(path)
@@ -127,25 +143,19 @@ def read_csv_frame(path) -> Frame:
         raise FrameFormatError(f"{path}:1: not a sadr frame CSV (expected the header "
                                f"{','.join(CSV_FIXED_COLUMNS)},<species...>, got {','.join(header)})")
     species = header[len(CSV_FIXED_COLUMNS):]
-    types = {"id": np.uint64, "kind": np.uint8}
-    dtype = [(f"c{i}", types.get(name, np.float64)) for i, name in enumerate(header)]
-    try:
-        rows = np.loadtxt(path, delimiter=",", skiprows=1, dtype=dtype, ndmin=1)
-    except ValueError as e:
-        raise FrameFormatError(f"{path}: {e}") from None
-    col = {name: rows[f"c{i}"] for i, name in enumerate(header)}
+    _, col = read_columns(path, ("id", "kind"))
     times = col["time"]
     if len(times) and np.any(times != times[0]):
         raise FrameFormatError(f"{path}: the time column is not constant")
     return Frame(
         time=float(times[0]) if len(times) else float("nan"),
-        ids=col["id"].copy(),
-        kinds=col["kind"].copy(),
+        ids=col["id"],
+        kinds=col["kind"],
         positions=np.column_stack([col["x"], col["y"], col["z"]]),
         velocity=np.column_stack([col["vx"], col["vy"], col["vz"]]),
-        density=col["density"].copy(),
-        mass=col["mass"].copy(),
-        species={s: col[s].copy() for s in species},
+        density=col["density"],
+        mass=col["mass"],
+        species={s: col[s] for s in species},
         path=path,
     )
 
@@ -261,17 +271,12 @@ def read_ensemble_frame(path) -> tuple:
     """An ``ensemble/frame_NNNNNN.csv`` of `sadr run -r R` / `sadr ensemble`:
     returns (time, ids, realizations, {species: (mean, variance)})."""
     path = Path(path)
-    with open(path, encoding="ascii") as f:
-        header = f.readline().rstrip("\n").split(",")
+    header, col = read_columns(path)
     if header[:3] != ["time", "id", "realizations"]:
         raise FrameFormatError(f"{path}:1: not a sadr ensemble CSV (expected time,id,realizations,...)")
-    types = {"id": np.uint64, "realizations": np.int64}
-    dtype = [(f"c{i}", types.get(n, np.float64)) for i, n in enumerate(header)]
-    rows = np.loadtxt(path, delimiter=",", skiprows=1, dtype=dtype, ndmin=1)
-    col = {n: rows[f"c{i}"] for i, n in enumerate(header)}
     stats = {}
     for n in header[3:]:
         if n.endswith("_mean"):
             s = n[: -len("_mean")]
-            stats[s] = (col[n].copy(), col[s + "_var"].copy())
-    return float(col["time"][0]), col["id"].copy(), col["realizations"].copy(), stats
+            stats[s] = (col[n], col[s + "_var"])
+    return float(col["time"][0]), col["id"], col["realizations"], stats

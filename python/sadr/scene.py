@@ -21,6 +21,17 @@ from .cli import run_cli
 from .runs import Ensemble, Run
 
 
+def set_options(overrides: dict | None) -> list:
+    """``--set PATH=VALUE`` options for the CLI, each value written as flow YAML."""
+    out = []
+    for path, value in (overrides or {}).items():
+        text = yaml.safe_dump(value, default_flow_style=True, width=1 << 30).strip()
+        if text.endswith("\n..."):
+            text = text[: -len("\n...")]
+        out += ["--set", f"{path}={text}"]
+    return out
+
+
 def _split(key: str):
     return [int(p) if p.lstrip("-").isdigit() else p for p in key.split(".")]
 
@@ -126,13 +137,16 @@ class Scene:
         return proc.stderr + proc.stdout
 
     def run(self, output, *, realizations: int | None = None, realization: int | None = None,
-            jobs: int | None = None, force: bool = True, quiet: bool = True, args=()):
+            jobs: int | None = None, overrides: dict | None = None, force: bool = True,
+            quiet: bool = True, args=()):
         """`sadr run` into ``output``; returns a sadr.Run (one realization) or
         sadr.Ensemble (``realizations`` R > 1, or ``realization`` i: only
         ``output/realization_iiii``). A changed scene is first written to
-        ``<output>.yaml``. Failures raise the sadr.SadrError of the exit code."""
+        ``<output>.yaml``. ``overrides`` {path: value} become ``--set
+        path=value`` (docs/cli.md: ``reactions[decay].rate``, values as YAML;
+        run.json records them). Failures raise the sadr.SadrError of the exit code."""
         output = Path(output)
-        cmd = ["run", self._file(output), "--output", output]
+        cmd = ["run", self._file(output), "--output", output] + set_options(overrides)
         if realizations is not None:
             cmd += ["--realizations", realizations]
         if realization is not None:

@@ -58,3 +58,16 @@ def test_changed_scene_is_written_next_to_the_output(tmp_path):
     assert run.times.tolist() == [0.0, 0.1]
     one = s.run(tmp_path / "ens", realization=2)
     assert one.path.name == "realization_0002" and one.manifest["realization"] == 2
+
+
+def test_overrides_become_set_options(tmp_path):
+    s = sadr.Scene.load(EXAMPLES / "static_reaction_diffusion.yaml")
+    assert sadr.scene.set_options({"time.end": 0.1, "output.times": [0.0, 0.1],
+                                   "reactions[decay_A].rate": 2}) == [
+        "--set", "time.end=0.1", "--set", "output.times=[0.0, 0.1]",
+        "--set", "reactions[decay_A].rate=2"]
+    run = s.run(tmp_path / "o", overrides={"time.end": 0.1, "output.every": 0.05})
+    assert run.manifest["overrides"] == ["time.end=0.1", "output.every=0.05"]
+    assert run.times.tolist() == [0.0, 0.05, 0.1]
+    with pytest.raises(sadr.InvalidInput, match="decay_X"):
+        s.run(tmp_path / "bad", overrides={"reactions[decay_X].rate": 1})
