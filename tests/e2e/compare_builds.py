@@ -16,6 +16,10 @@ collected from the e2e tests: run them once with
     SADR_SCENE_DUMP=/tmp/e2e-scenes ctest --preset ci -L e2e
 
 (`tests/e2e/cli_test_support.hpp` copies every scene a test writes there).
+With --resume, every example is also cut in half: OLD runs it to the middle
+(--stop-at, which writes a checkpoint), NEW resumes that checkpoint to the
+same stop time as the whole run, and the result must equal OLD's whole run:
+checkpoints written by the old build resume bit-identically on the new one.
 Every `frames/*` file, the `.pvd` index and the checkpoint blobs are
 compared byte by byte; run.json is not (it holds wall times). A scene that
 fails on both builds with the same exit code is reported as `both-fail`
@@ -25,6 +29,7 @@ differs is a failure. Exit 0 when every scene is identical.
 import argparse
 import hashlib
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -39,6 +44,18 @@ STOP_AT = {
     "annihilation_1d_stochastic_n65": "0.5",
     "annihilation_1d_stochastic_n33": "1.0",
 }
+
+# e2e scenes that run until a test kills a service (end 1000-2000): cut as well.
+E2E_STOP_AT = {
+    "KilledSsaService": "2.0",
+}
+
+
+def e2e_extra(scene: pathlib.Path) -> list[str]:
+    for key, stop in E2E_STOP_AT.items():
+        if key in scene.name:
+            return ["--stop-at", stop]
+    return []
 
 
 def digest_tree(out: pathlib.Path) -> dict[str, str]:
@@ -63,23 +80,53 @@ def run_one(binary: pathlib.Path, scene: pathlib.Path, out: pathlib.Path, extra:
     return p.returncode, time.monotonic() - t0, (p.stdout + p.stderr)[-400:]
 
 
+def end_time(scene: pathlib.Path, extra: list[str]) -> float:
+    """The stop time of the whole run: --stop-at if given, else time.end of the scene."""
+    if "--stop-at" in extra:
+        return float(extra[extra.index("--stop-at") + 1])
+    m = re.search(r"\bend:\s*([0-9.eE+-]+)", scene.read_text())
+    if not m:
+        raise SystemExit(f"{scene}: no time.end found")
+    return float(m.group(1))
+
+
+def resume_one(old: pathlib.Path, new: pathlib.Path, scene: pathlib.Path, out: pathlib.Path,
+               extra: list[str]):
+    """OLD to the middle, NEW resumes to the end; returns (rc, log)."""
+    stop = end_time(scene, extra)
+    half = list(extra)
+    if "--stop-at" in half:
+        i = half.index("--stop-at")
+        del half[i:i + 2]
+    rc, _, log = run_one(old, scene, out, half + ["--stop-at", repr(stop / 2)])
+    if rc != 0:
+        return rc, "old half: " + log
+    cmd = [str(new / "sadr"), "resume", str(out / "checkpoint"), "-q"]
+    if "--stop-at" in extra:
+        cmd += ["--stop-at", repr(stop)]
+    p = subprocess.run(cmd, cwd=scene.parent, capture_output=True, text=True)
+    return p.returncode, (p.stdout + p.stderr)[-400:]
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("old_bin", type=pathlib.Path)
-    ap.add_argument("new_bin", type=pathlib.Path)
+    ap.add_argument("old_bin", type=lambda p: pathlib.Path(p).resolve())
+    ap.add_argument("new_bin", type=lambda p: pathlib.Path(p).resolve())
     ap.add_argument("--scenes", type=pathlib.Path, help="folder of extra scene YAML files")
     ap.add_argument("--work", type=pathlib.Path, default=pathlib.Path("/tmp/sadr-compare"))
     ap.add_argument("--only", help="substring: run only scenes whose name contains it")
+    ap.add_argument("--resume", action="store_true",
+                    help="also resume OLD's mid-run checkpoint of every example with NEW")
     args = ap.parse_args()
 
     scenes = [(p, ["--stop-at", STOP_AT[p.stem]] if p.stem in STOP_AT else [])
               for p in sorted((ROOT / "examples").glob("*.yaml"))]
     if args.scenes:
-        scenes += [(p, []) for p in sorted(args.scenes.glob("*.yaml"))]
+        scenes += [(p, e2e_extra(p)) for p in sorted(args.scenes.glob("*.yaml"))]
     if args.only:
         scenes = [s for s in scenes if args.only in s[0].name]
 
-    failures = 0
+    failures = resumed = 0
     print(f"{'scene':48s} {'result':10s} {'files':>5s} {'old s':>7s} {'new s':>7s}")
     for scene, extra in scenes:
         tag = scene.stem if scene.parent.name == "examples" else "e2e/" + scene.stem
@@ -104,7 +151,24 @@ def main() -> int:
             failures += 1
             print("  old:", loga.strip().replace("\n", " | ")[-200:])
             print("  new:", logb.strip().replace("\n", " | ")[-200:])
-    print(f"{len(scenes) - failures} identical, {failures} differ (of {len(scenes)} scenes)")
+        if args.resume and scene.parent.name == "examples" and ok and rca == 0:
+            orr = args.work / "resume" / tag
+            rcr, logr = resume_one(args.old_bin, args.new_bin, scene, orr, extra)
+            dr = digest_tree(orr) if rcr == 0 else {}
+            ref = digest_tree(oa)
+            if not any(k.startswith("checkpoint/") for k in ref):
+                # The whole run wrote no checkpoint; the half run's stays: frames only.
+                dr = {k: v for k, v in dr.items() if not k.startswith("checkpoint/")}
+            rok = rcr == 0 and dr == ref
+            resumed += 1
+            print(f"{tag + ' (old half + new resume)':48s} {'identical' if rok else 'DIFFERS':10s}"
+                  f" {len(dr):5d}", flush=True)
+            if not rok:
+                failures += 1
+                print("  resume:", logr.strip().replace("\n", " | ")[-300:])
+    total = len(scenes) + resumed
+    print(f"{total - failures} identical, {failures} differ (of {len(scenes)} scenes"
+          f"{f' and {resumed} resumed runs' if resumed else ''})")
     return 1 if failures else 0
 
 

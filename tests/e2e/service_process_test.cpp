@@ -83,33 +83,39 @@ TEST_P(ServiceE2E, SsaHandshakeRunSnapshotRestore) {
 
   const auto init = ssa.init(chain_init(17, 7));
   EXPECT_GT(init.edges(), 0u);
-  ssa::v1::AdvanceRequest adv;
-  adv.set_run_id("e2e");
-  adv.set_step_index(0);
-  adv.set_t_end(0.5);
-  const auto r0 = ssa.advance(adv);
-  EXPECT_GT(r0.events(), 0u);
-  EXPECT_DOUBLE_EQ(r0.time(), 0.5);
+  ssa.set_run_id("e2e");
+  const SsaStep r0 = ssa.advance(0, 0.5, {}, {"A"});
+  EXPECT_GT(r0.events, 0u);
+  EXPECT_DOUBLE_EQ(r0.time, 0.5);
+  // The copy numbers asked for come back with the step (the back-transfer).
+  ASSERT_EQ(r0.counts.names, std::vector<std::string>{"A"});
+  EXPECT_EQ(r0.counts.values[0], ssa.counts({"A"}).values[0]);
   // A resent step is not stepped again (idempotent retry).
-  const auto again = ssa.advance(adv);
-  EXPECT_EQ(again.events(), r0.events());
+  const SsaStep again = ssa.advance(0, 0.5, {}, {"A"});
+  EXPECT_EQ(again.events, r0.events);
+  EXPECT_EQ(again.counts.values, r0.counts.values);
 
-  const common::v1::Snapshot snap = ssa.snapshot(1);
+  const std::string snap_bytes = ssa.snapshot(1);
+  common::v1::Snapshot snap;
+  ASSERT_TRUE(snap.ParseFromString(snap_bytes));
   EXPECT_EQ(snap.format(), "sadr.ssa.nsm");
-  adv.set_step_index(1);
-  adv.set_t_end(1.0);
-  ssa.advance(adv);
-  const auto first = ssa.get_counts({});
-  ssa.restore(snap);
-  adv.set_step_index(2);  // a new step index: the restored run continues
-  ssa.advance(adv);
-  const auto second = ssa.get_counts({});
-  ASSERT_EQ(first.counts().species_size(), 1);
-  EXPECT_EQ(first.counts().species(0).counts_size(), 17);
-  EXPECT_TRUE(std::equal(first.counts().species(0).counts().begin(),
-                         first.counts().species(0).counts().end(),
-                         second.counts().species(0).counts().begin()))
-      << "restored run must continue bit-identically";
+  ssa.advance(1, 1.0, {}, {});
+  const SpeciesCounts first = ssa.counts({});
+  ssa.restore(snap_bytes);
+  ssa.advance(2, 1.0, {}, {});  // a new step index: the restored run continues
+  const SpeciesCounts second = ssa.counts({});
+  ASSERT_EQ(first.names.size(), 1u);
+  EXPECT_EQ(first.values[0].size(), 17u);
+  EXPECT_EQ(first.values, second.values) << "restored run must continue bit-identically";
+  try {
+    ssa.advance(3, 1.5, {}, {"Q"});
+    FAIL() << "an unknown species in return_counts must be refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("advance.return_counts[0]: unknown stochastic species "
+                                         "'Q'"),
+              std::string::npos)
+        << e.what();
+  }
 
   ssa.shutdown();
   for (int i = 0; i < 200 && proc.alive(); ++i) std::this_thread::sleep_for(10ms);
@@ -161,10 +167,8 @@ TEST_P(ServiceE2E, BadInputIsReportedWithTheFieldAndTheServiceSurvives) {
               std::string::npos)
         << e.what();
   }
-  ssa::v1::AdvanceRequest adv;
-  adv.set_t_end(1.0);
   try {
-    ssa.advance(adv);
+    ssa.advance(0, 1.0, {}, {});
     FAIL();
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), StatusCode::kFailedPrecondition);
@@ -208,15 +212,13 @@ TEST_P(ServiceE2E, FluidServiceStaticBackendOverTheWire) {
   m->set_reference_density(1.0);
   m->set_sound_speed(1.0);
   const auto rep = fluid.init(init);
-  fluid::v1::AdvanceRequest adv;
-  adv.set_run_id("e2e");
-  adv.set_time_step(0.1);
-  const auto a = fluid.advance(adv);
-  EXPECT_FALSE(a.particles_moved());
-  EXPECT_NEAR(a.time(), 0.1, 1e-15);
-  const auto st = fluid.get_state({});
-  EXPECT_EQ(st.particles().densities_size(), nx * nx);
-  EXPECT_EQ(st.particles().positions(3), p.positions[3]);
+  fluid.set_run_id("e2e");
+  const FluidStep a = fluid.advance(0, 0.1, false, {});
+  EXPECT_FALSE(a.particles_moved);
+  EXPECT_NEAR(a.time, 0.1, 1e-15);
+  const FluidFrame st = fluid.frame({});
+  EXPECT_EQ(st.particles.size(), static_cast<std::size_t>(nx * nx));
+  EXPECT_EQ(st.particles.positions[3], p.positions[3]);
 
   // Unknown backend: the error lists the known ones.
   m->set_backend("lbm");

@@ -161,6 +161,7 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
     throw InvalidArgument("advance.time_step = " + format_value(req.time_step()) +
                           " (allowed: > 0)");
   }
+  if (req.has_counts()) set_counts(req.counts(), "advance.counts");
   const auto t0 = std::chrono::steady_clock::now();
   const StepReport r = b.advance(req.step_index(), req.time_step());
   rep.set_compute_seconds(
@@ -225,6 +226,27 @@ void FluidServiceHandler::set_species(const v1::SetSpeciesRequest& req) {
     }
     b.set_concentrations(
         s, std::span<const double>(f.concentrations().data(), f.concentrations_size()));
+  }
+}
+
+void FluidServiceHandler::set_counts(const common::v1::SpeciesFields& counts,
+                                     const std::string& where) {
+  FluidBackend& b = backend();
+  b.read_state(scratch_);  // the volumes V_i = m_i / rho_i of the current state
+  for (int k = 0; k < counts.species_size(); ++k) {
+    const auto& f = counts.species(k);
+    const std::string at = where + ".species[" + std::to_string(k) + "]";
+    const int s = species(f.name(), at);
+    if (static_cast<std::size_t>(f.counts_size()) != n_particles_) {
+      throw InvalidArgument(at + " has " + std::to_string(f.counts_size()) + " counts, expected " +
+                            std::to_string(n_particles_));
+    }
+    std::vector<double>& c = inflow_values_;  // scratch reused: no allocation per step
+    c.resize(n_particles_);
+    for (std::size_t i = 0; i < n_particles_; ++i) {
+      c[i] = static_cast<double>(f.counts(static_cast<int>(i))) / scratch_.volume(i);
+    }
+    b.set_concentrations(s, c);
   }
 }
 

@@ -113,8 +113,19 @@ void SsaServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
 
 void SsaServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply& rep) {
   NsmSolver& s = solver();
+  // The copy numbers asked for, after the step (also on a retry: unchanged
+  // since); unknown names are refused before stepping.
+  std::vector<int> returned;
+  for (int k = 0; k < req.return_counts_size(); ++k) {
+    returned.push_back(find_species(species_names_, req.return_counts(k),
+                                    "advance.return_counts[" + std::to_string(k) + "]"));
+  }
+  auto add_counts = [&] {
+    if (!returned.empty()) copy_counts(returned, *rep.mutable_counts());
+  };
   if (have_last_ && req.run_id() == last_run_id_ && req.step_index() == last_step_) {
     rep = last_reply_;  // a retry of the step just done
+    add_counts();
     return;
   }
   bool rebuilt = false;
@@ -150,6 +161,7 @@ void SsaServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply&
   last_step_ = req.step_index();
   last_reply_ = rep;
   have_last_ = true;
+  add_counts();
 }
 
 void SsaServiceHandler::get_counts(const v1::GetCountsRequest& req, v1::GetCountsReply& rep) const {
@@ -163,13 +175,19 @@ void SsaServiceHandler::get_counts(const v1::GetCountsRequest& req, v1::GetCount
                                    "get_counts.species[" + std::to_string(k) + "]"));
     }
   }
+  copy_counts(which, *rep.mutable_counts());
+  rep.set_time(s.time());
+}
+
+void SsaServiceHandler::copy_counts(const std::vector<int>& which,
+                                    common::v1::SpeciesFields& out) const {
+  const NsmSolver& s = solver();
   for (int sp : which) {
-    auto* f = rep.mutable_counts()->add_species();
+    auto* f = out.add_species();
     f->set_name(species_names_[static_cast<std::size_t>(sp)]);
     const auto c = s.counts(sp);
     f->mutable_counts()->Assign(c.begin(), c.end());
   }
-  rep.set_time(s.time());
 }
 
 void SsaServiceHandler::snapshot(const v1::SnapshotRequest& req, v1::SnapshotReply& rep) const {

@@ -39,6 +39,9 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
   void advance(const v1::AdvanceRequest& req, v1::AdvanceReply& rep);
   void get_state(const v1::GetStateRequest& req, v1::GetStateReply& rep) const;
   void set_species(const v1::SetSpeciesRequest& req);
+  /// Back-transfer: concentrations X_is / V_i from copy numbers, with this
+  /// service's own volumes V_i = m_i / rho_i. Errors name `where`.
+  void set_counts(const common::v1::SpeciesFields& counts, const std::string& where);
   void snapshot(const v1::SnapshotRequest& req, v1::SnapshotReply& rep) const;
   void restore(const v1::RestoreRequest& req);
   FluidBackend& backend() const;
@@ -62,7 +65,7 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
     wire::InflowBox box;
   };
   std::vector<Inflow> inflows_;        ///< applied after Init and after every Advance
-  std::vector<double> inflow_values_;  ///< apply_inflows() scratch
+  std::vector<double> inflow_values_;  ///< apply_inflows() and set_counts() scratch
 };
 
 }  // namespace sadr::fluid

@@ -44,6 +44,8 @@ class SsaServiceHandler : public wire::TypedHandler<v1::SsaRequest, v1::SsaReply
   void init(const v1::InitRequest& req, v1::InitReply& rep);
   void advance(const v1::AdvanceRequest& req, v1::AdvanceReply& rep);
   void get_counts(const v1::GetCountsRequest& req, v1::GetCountsReply& rep) const;
+  /// Appends the copy numbers of species `which` (indices) to `out`.
+  void copy_counts(const std::vector<int>& which, common::v1::SpeciesFields& out) const;
   void snapshot(const v1::SnapshotRequest& req, v1::SnapshotReply& rep) const;
   void restore(const v1::RestoreRequest& req);
   NsmSolver& solver() const;

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+/// \file frame_output.hpp
+/// Frames of one realization: the services' current state written as
+/// .vtu/.vtp/.csv (frames/frame_NNNNNN.*), the .pvd index that lists them,
+/// and the frame list of the run manifest.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+#include "sadr/orchestrator/frame_writers.hpp"
+#include "sadr/orchestrator/run_manifest.hpp"
+#include "sadr/orchestrator/scene.hpp"
+#include "sadr/orchestrator/service_interfaces.hpp"
+
+namespace sadr::orchestrator {
+
+class FrameOutput {
+ public:
+  /// Frames go to output_dir/frames (created), the index to
+  /// output_dir/<scene name>.pvd; file names are appended to manifest.frames.
+  FrameOutput(const Scene& scene, const std::filesystem::path& output_dir, RunManifest& manifest);
+
+  /// Writes frame `index` at time t: particles and deterministic
+  /// concentrations from `fluid` (or `particles` when there is none), copy
+  /// numbers of stochastic output species from `ssa`. Returns the species
+  /// columns written (in output order).
+  std::vector<SpeciesColumn> write(std::size_t index, double t, FluidService* fluid,
+                                   SsaService* ssa, const ParticleState& particles);
+  /// Lists the frames at output times <= t again (written before a checkpoint
+  /// the run resumes from).
+  void relist_until(double t);
+
+ private:
+  void list(std::size_t index, double t);
+
+  const Scene& scene_;
+  std::filesystem::path dir_;
+  RunManifest& manifest_;
+  PvdCollection pvd_;
+};
+
+}  // namespace sadr::orchestrator

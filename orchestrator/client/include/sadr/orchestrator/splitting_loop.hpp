@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+/// \file splitting_loop.hpp
+/// The Lie/Strang coupling loop (docs/method.md, "Operator splitting") over
+/// the service interfaces: steps shortened to land on output times and the
+/// end (next_coupling_step), the geometry handed from each fluid stage to the
+/// SSA stage after it, the back-transfer of copy numbers, and the overlap of
+/// SSA step k with fluid step k + 1. Frames and checkpoints are the caller's,
+/// through hooks, called when both services are idle.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sadr/orchestrator/run_manifest.hpp"
+#include "sadr/orchestrator/scene.hpp"
+#include "sadr/orchestrator/service_interfaces.hpp"
+#include "sadr/orchestrator/splitting.hpp"
+
+namespace sadr::orchestrator {
+
+struct LoopSettings {
+  Splitting splitting = Splitting::kLie;
+  double tau = 0.0;                  ///< coupling step [time]
+  double t_end = 0.0;                ///< [time]
+  std::vector<double> output_times;  ///< sorted [time]
+  double checkpoint_every = 0.0;     ///< simulated time between checkpoints; <= 0: none
+  /// Checkpoint and stop after the first step that reaches this time [time].
+  double stop_at = std::numeric_limits<double>::infinity();
+  bool fluid_stepping = true;       ///< the fluid is advanced (not static)
+  int fluid_calls_per_step = 1;     ///< fluid calls per coupling step (step index stride)
+  bool geometry_each_step = false;  ///< particles move: geometry fluid -> ssa per SSA stage
+  /// Stochastic species the fluid reads: copy numbers go to the fluid before
+  /// every fluid stage (empty: no back-transfer).
+  std::vector<std::string> back_transfer;
+  /// Skip the coupling step (Plan::frame_to_frame: SSA alone, nothing moves):
+  /// steps go from output to output, checkpoint and stop time (FrameToFrame).
+  bool frame_to_frame = false;
+  /// Overlap SSA step k with fluid step k + 1 (used only where results cannot
+  /// change: Lie, both services, fluid stepping, no back-transfer).
+  bool overlap = false;
+};
+
+struct LoopHooks {
+  /// A step ended on output time `t` (index into output_times).
+  std::function<void(std::size_t index, double t)> frame;
+  /// Write a checkpoint of the current state.
+  std::function<void()> checkpoint;
+  /// A stop was requested (signal): checkpoint and stop after this step.
+  std::function<bool()> stop_requested;
+  /// After every step (progress display).
+  std::function<void(double t, std::uint64_t steps)> progress;
+};
+
+class SplittingLoop {
+ public:
+  /// `fluid` / `ssa` may be null when the plan runs without that service;
+  /// they must outlive the loop. Timings and counters go to `stats`.
+  SplittingLoop(FluidService* fluid, SsaService* ssa, LoopSettings settings, RunManifest& stats);
+  ~SplittingLoop();
+  SplittingLoop(const SplittingLoop&) = delete;
+  SplittingLoop& operator=(const SplittingLoop&) = delete;
+
+  /// Continue from a restored state at time t after `steps` coupling steps.
+  void resume_at(double t, std::uint64_t steps);
+  /// Runs to the end (or stop_at, or a requested stop); writes a final
+  /// checkpoint when checkpoints are on and the last one is not at the end.
+  /// @return true when stopped early (stop_at or a stop request)
+  bool run(const LoopHooks& hooks);
+
+  [[nodiscard]] double time() const { return t_; }
+  [[nodiscard]] std::uint64_t steps() const { return step_; }
+  [[nodiscard]] bool overlapping() const { return overlap_; }
+
+ private:
+  struct SsaJob;
+  class Worker;
+  void step(const CouplingStep& cs, bool defer_ssa);
+  SpeciesCounts back_transfer_counts();
+  void run_ssa(SsaJob& job);
+  void finish_ssa(const SsaJob& job);
+  void drain();
+  void drain_after_failure() noexcept;
+  [[nodiscard]] double next_checkpoint_after(double t) const;
+
+  FluidService* fluid_;
+  SsaService* ssa_;
+  LoopSettings s_;
+  RunManifest& stats_;
+  bool overlap_ = false;
+  double t_ = 0.0;
+  std::uint64_t step_ = 0;
+  /// Copy numbers of s_.back_transfer after the last SSA stage (valid: has_counts_).
+  SpeciesCounts counts_;
+  bool has_counts_ = false;
+  std::unique_ptr<SsaJob> pending_;  ///< an SSA stage running on worker_
+  std::unique_ptr<Worker> worker_;   ///< declared last: joined first
+};
+
+}  // namespace sadr::orchestrator
