@@ -22,6 +22,7 @@ PACKAGES=(
   python3-pytest                            # its tests (tests/python, run by ctest)
   python3-distributed                       # the Dask example (python/sadr/dask_runner.py)
   python3-nbconvert python3-ipykernel       # the notebook examples/notebooks/, executed in the tests
+  clang-format                              # .ci/run fails on a formatting difference
 )
 
 missing=()

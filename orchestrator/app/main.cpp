@@ -14,9 +14,10 @@ int main(int argc, char** argv) {
   CLI::App app{
       std::string("sadr ") + sadr::kVersion +
       ": stochastic advection-diffusion-reaction in particle fluids.\n"
-      "A particle fluid (fluid_service: SDPD or static) carries molecules whose\n"
-      "reactions and diffusion are simulated exactly (ssa_service: Next Subvolume\n"
-      "Method on the particle diffusion graph), coupled by Lie or Strang splitting.\n\n"
+      "A particle fluid (fluid_service: an SDPD, tDPD or static backend) carries\n"
+      "molecules whose reactions and diffusion are simulated exactly (ssa_service:\n"
+      "Next Subvolume Method on the particle diffusion graph), coupled by Lie or\n"
+      "Strang splitting.\n\n"
       "Examples:\n"
       "  sadr validate examples/static_reaction_diffusion.yaml\n"
       "  sadr run examples/annihilation_1d_stochastic.yaml --output runs/ann17\n"

@@ -61,7 +61,9 @@ inline fs::path write_scene(const fs::path& dir, const std::string& text,
     const std::string test = info != nullptr
                                  ? std::string(info->test_suite_name()) + "." + info->name()
                                  : std::string("no_test");
-    std::ofstream(fs::path(dump) / (test + "." + name)) << text;
+    std::string file = test + "." + name;  // parameterised tests: "Suite/Name.Test/0"
+    std::replace(file.begin(), file.end(), '/', '_');
+    std::ofstream(fs::path(dump) / file) << text;
   }
   return p;
 }
