@@ -26,15 +26,25 @@ extern "C" void on_signal(int) {
   g_interrupt.store(true);
 }
 
+}  // namespace
+
 void install_signal_handlers() {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
 }
 
+bool interrupt_requested() {
+  return g_interrupt.load();
+}
+
+namespace {
+
 bool is_service_failure(const Error& e) {
   return e.code() == StatusCode::kUnavailable || e.code() == StatusCode::kDeadlineExceeded;
 }
+
+}  // namespace
 
 void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
   std::fprintf(stderr, "sadr: scene '%s' (%zu particles, %zu species, %zu reactions), t_end = %g\n",
@@ -43,6 +53,8 @@ void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
   std::fprintf(stderr, "sadr: plan (services as %s):\n", std::string(to_string(o.mode)).c_str());
   for (const auto& line : plan.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
 }
+
+namespace {
 
 /// OpenMP threads the fluid will use: --fluid-threads, else OMP_NUM_THREADS (its
 /// first value), else every hardware thread (OpenMP's default).
@@ -86,8 +98,8 @@ void prepare_output(const fs::path& dir, bool force) {
   ensure_directory(dir);
 }
 
-/// One realization, relaunching its services from the last checkpoint up to
-/// `restarts` times when a service dies or stops answering.
+}  // namespace
+
 RunResult run_realization(const Scene& scene, const Plan& plan, const CliOptions& o,
                           std::uint64_t realization, const fs::path& out,
                           const LoadedCheckpoint* resume, const RunOptions& base) {
@@ -121,8 +133,6 @@ RunResult run_realization(const Scene& scene, const Plan& plan, const CliOptions
     }
   }
 }
-
-}  // namespace
 
 int report_failure(const std::exception& e) {
   std::fprintf(stderr, "sadr: error: %s\n", e.what());

@@ -48,6 +48,12 @@ struct CliOptions {
   std::string realization;
   std::string directory;               ///< ensemble: the output directory to combine
   std::vector<std::string> overrides;  ///< --set PATH=VALUE (run, validate)
+  std::string sweep;                   ///< sweep: the sweep file ("" with --resume)
+  std::string resume_dir;              ///< sweep --resume DIR
+  bool aggregate_only = false;         ///< sweep: only fold results and aggregate
+  int workers = 0;                     ///< sweep: local workers (0 = the file's, else cores)
+  std::string executor;                ///< sweep --executor local|slurm ("" = the file's)
+  std::string index;                   ///< sweep-task --index ("" = from the environment)
 };
 
 int cmd_validate(const CliOptions& options);
@@ -61,6 +67,22 @@ int cmd_summary(const CliOptions& options);
 /// The same table at the end of `sadr run` / `sadr resume` (stderr; nothing
 /// when `quiet`). A summary that cannot be made is a warning, not a failure.
 void summarize_at_end(const std::filesystem::path& dir, bool quiet);
+
+/// `sadr sweep SWEEP.yaml` / `sadr sweep --resume DIR` (sweep_command.cpp).
+int cmd_sweep(const CliOptions& options);
+/// `sadr sweep-task DIR [--index I]`: one run of a sweep (sweep_task.cpp).
+int cmd_sweep_task(const CliOptions& options);
+
+/// SIGINT/SIGTERM set a flag (interrupt_requested()) that stops runs at a checkpoint.
+void install_signal_handlers();
+bool interrupt_requested();
+/// Prints the scene summary and the plan to stderr.
+void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o);
+/// One realization into `out`, relaunching its services from the last
+/// checkpoint up to o.restarts times when a service dies or stops answering.
+RunResult run_realization(const Scene& scene, const Plan& plan, const CliOptions& o,
+                          std::uint64_t realization, const std::filesystem::path& out,
+                          const LoadedCheckpoint* resume, const RunOptions& base);
 
 /// Maps an exception to an exit code and prints it ("sadr: error: ...").
 int report_failure(const std::exception& e);

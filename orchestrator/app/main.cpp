@@ -24,7 +24,9 @@ int main(int argc, char** argv) {
       "  sadr run examples/annihilation_1d_stochastic.yaml --realizations 100\n"
       "  sadr resume runs/ann17/checkpoint/checkpoint.json\n"
       "  deploy/slurm/submit-ensemble.sh SCENE OUT 100  # Slurm array, then sadr ensemble OUT\n"
-      "  sbatch --array=0-99 deploy/slurm/realization.sbatch SCENE OUT; sadr ensemble OUT\n\n"
+      "  sbatch --array=0-99 deploy/slurm/realization.sbatch SCENE OUT; sadr ensemble OUT\n"
+      "  sadr run SCENE --set 'reactions[annihilation].rate=0.2'  # override a scene value\n"
+      "  sadr sweep sweep.yaml -o sweeps/rate  # points x realizations, docs/sweeps.md\n\n"
       "Exit codes: 0 ok, 1 invalid scene/input, 2 usage, 3 service failure,\n"
       "4 numerical failure, 5 I/O failure, 130 interrupted (checkpoint written).\n"
       "Scene format: docs/scene-format.md. Outputs: <output>/run.json, frames/,\n"
@@ -119,6 +121,30 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingDirectory);
 
+  auto* sweep = app.add_subcommand(
+      "sweep", "run a parameter sweep (points x realizations, local or Slurm), resumable; "
+               "docs/sweeps.md");
+  sweep->add_option("sweep", o.sweep, "sweep file (YAML)")->check(CLI::ExistingFile);
+  sweep->add_option("--resume", o.resume_dir, "continue the sweep in this directory")
+      ->check(CLI::ExistingDirectory);
+  sweep->add_flag("--aggregate-only", o.aggregate_only,
+                  "only read the runs' results and aggregate (the Slurm aggregation job)");
+  sweep->add_option("--executor", o.executor, "local or slurm (default: the sweep file's)")
+      ->check(CLI::IsMember({"local", "slurm"}));
+  sweep->add_option("--workers", o.workers, "local executor: runs at once (default: cores)")
+      ->check(CLI::Range(1, 4096));
+  sweep->add_option("-o,--output", o.output, "sweep directory (default: the file's output, else "
+                                             "sweeps/<file stem>)");
+  sweep->add_flag("--force", o.force, "start over in a directory that holds another sweep");
+  sweep->add_flag("-q,--quiet", o.quiet, "no per-run lines");
+  auto* sweep_task = app.add_subcommand(
+      "sweep-task", "one run of a sweep (the worker command of every executor)");
+  sweep_task->add_option("directory", o.directory, "the sweep directory")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  sweep_task->add_option("--index", o.index,
+                         "run index (default: SLURM_ARRAY_TASK_ID, else JOB_COMPLETION_INDEX)");
+  sweep_task->add_flag("-q,--quiet", o.quiet, "no plan");
   auto* summary = app.add_subcommand(
       "summary",
       "what a run or ensemble did: species totals at the first and last frame, wall time per "
@@ -150,6 +176,14 @@ int main(int argc, char** argv) {
     if (*run) return cmd_run(o);
     if (*ensemble) return cmd_ensemble(o);
     if (*summary) return cmd_summary(o);
+    if (*sweep) {
+      if (o.sweep.empty() == o.resume_dir.empty()) {
+        std::fprintf(stderr, "sadr sweep: give either SWEEP.yaml or --resume DIR\n");
+        return kExitUsage;
+      }
+      return cmd_sweep(o);
+    }
+    if (*sweep_task) return cmd_sweep_task(o);
     return cmd_resume(o);
   } catch (const std::exception& e) {
     return report_failure(e);

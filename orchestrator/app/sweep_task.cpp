@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+// `sadr sweep-task DIR [--index I]`: one run of a sweep, the same command for
+// every executor. The index comes from --index, SLURM_ARRAY_TASK_ID or
+// JOB_COMPLETION_INDEX (Kubernetes Indexed Job). The run's scene is the base
+// scene with its point's overrides and `seed` = the point seed; it resumes
+// from its checkpoint when one is there. It writes only its own directory,
+// ending with result.json (state, exit code, reason).
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+
+#include "commands.hpp"
+#include "sadr/orchestrator/atomic_file.hpp"
+#include "sadr/orchestrator/scene_loader.hpp"
+#include "sadr/orchestrator/sweep_manifest.hpp"
+
+namespace sadr::orchestrator {
+namespace fs = std::filesystem;
+namespace {
+
+std::size_t task_index(const CliOptions& o) {
+  std::string text = o.index;
+  const char* from = "--index";
+  for (const char* var : {"SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"}) {
+    if (!text.empty()) break;
+    if (const char* v = std::getenv(var)) {
+      text = v;
+      from = var;
+    }
+  }
+  if (text.empty()) {
+    throw InvalidArgument(
+        "sweep-task: no run index (pass --index I, or set SLURM_ARRAY_TASK_ID or "
+        "JOB_COMPLETION_INDEX)");
+  }
+  char* end = nullptr;
+  const unsigned long long i = std::strtoull(text.c_str(), &end, 10);
+  if (*end != '\0' || text[0] == '-') {
+    throw InvalidArgument(std::string("sweep-task: ") + from + " '" + text +
+                          "' is not a run index (a whole number >= 0)");
+  }
+  return static_cast<std::size_t>(i);
+}
+
+}  // namespace
+
+int cmd_sweep_task(const CliOptions& o) {
+  install_signal_handlers();
+  const fs::path dir = o.directory;
+  const SweepManifest m = SweepManifest::read(dir);
+  const SweepRun& run = m.run(task_index(o));
+  const fs::path rd = dir / run.dir;
+  ensure_directory(rd);
+  const auto previous = read_run_outcome(rd);
+  if (previous && previous->state == RunState::kOk) {
+    std::fprintf(stderr, "sadr: run %zu (%s) already finished; nothing to do\n", run.index,
+                 run.dir.c_str());
+    return kExitOk;
+  }
+  RunOutcome out;
+  out.state = RunState::kRunning;
+  out.attempts = previous ? previous->attempts + 1 : 1;
+  write_run_outcome(rd, out);
+  try {
+    const Scene scene = load_scene(m.base_scene, m.overrides_of(run));
+    out.scene_hash = scene.source_hash;
+    Plan plan = make_plan(scene);
+    const fs::path cp = rd / "checkpoint" / std::string(kCheckpointManifestName);
+    std::optional<LoadedCheckpoint> resume;
+    if (fs::exists(cp)) {
+      resume = load_checkpoint(cp, scene.source_hash);
+      out.resumed = true;
+      std::fprintf(stderr, "sadr: run %zu resumes at t = %g from its checkpoint\n", run.index,
+                   resume->manifest.time);
+    } else {
+      for (const char* sub : {"frames", "checkpoint"}) fs::remove_all(rd / sub);
+    }
+    if (!o.quiet) print_plan(scene, plan, o);
+    RunOptions base;
+    base.progress = false;
+    const RunResult res =
+        run_realization(scene, plan, o, run.realization, rd, resume ? &*resume : nullptr, base);
+    out.state = res.interrupted ? RunState::kInterrupted : RunState::kOk;
+    out.exit_code = res.interrupted ? kExitInterrupted : kExitOk;
+    if (res.interrupted) out.reason = "interrupted at t = " + std::to_string(res.time);
+  } catch (const std::exception& e) {
+    out.state = RunState::kFailed;
+    out.exit_code = report_failure(e);
+    out.reason = e.what();
+  }
+  write_run_outcome(rd, out);
+  return out.exit_code;
+}
+
+}  // namespace sadr::orchestrator
