@@ -122,8 +122,9 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
 
   auto* sweep = app.add_subcommand(
-      "sweep", "run a parameter sweep (points x realizations, local or Slurm), resumable; "
-               "docs/sweeps.md");
+      "sweep",
+      "run a parameter sweep (points x realizations, local or Slurm), resumable; "
+      "docs/sweeps.md");
   sweep->add_option("sweep", o.sweep, "sweep file (YAML)")->check(CLI::ExistingFile);
   sweep->add_option("--resume", o.resume_dir, "continue the sweep in this directory")
       ->check(CLI::ExistingDirectory);
@@ -133,12 +134,13 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"local", "slurm"}));
   sweep->add_option("--workers", o.workers, "local executor: runs at once (default: cores)")
       ->check(CLI::Range(1, 4096));
-  sweep->add_option("-o,--output", o.output, "sweep directory (default: the file's output, else "
-                                             "sweeps/<file stem>)");
+  sweep->add_option("-o,--output", o.output,
+                    "sweep directory (default: the file's output, else "
+                    "sweeps/<file stem>)");
   sweep->add_flag("--force", o.force, "start over in a directory that holds another sweep");
   sweep->add_flag("-q,--quiet", o.quiet, "no per-run lines");
-  auto* sweep_task = app.add_subcommand(
-      "sweep-task", "one run of a sweep (the worker command of every executor)");
+  auto* sweep_task =
+      app.add_subcommand("sweep-task", "one run of a sweep (the worker command of every executor)");
   sweep_task->add_option("directory", o.directory, "the sweep directory")
       ->required()
       ->check(CLI::ExistingDirectory);

@@ -77,9 +77,9 @@ void aggregate(SweepManifest& m, const fs::path& dir, bool quiet) {
     }
     if (hashes.size() != 1) {
       a["state"] = "refused";
-      a["notes"] = json::array(
-          {"the runs of this point ran different effective scenes (" +
-           std::to_string(hashes.size()) + " scene hashes); refusing to aggregate them"});
+      a["notes"] = json::array({"the runs of this point ran different effective scenes (" +
+                                std::to_string(hashes.size()) +
+                                " scene hashes); refusing to aggregate them"});
       continue;
     }
     const fs::path out = dir / point_dir(p.index);
@@ -156,7 +156,7 @@ int cmd_sweep(const CliOptions& o) {
     m = SweepManifest::read(dir);
   } else {
     const SweepSpec spec = load_sweep_spec(o.sweep);
-    dir = !o.output.empty()  ? fs::path(o.output)
+    dir = !o.output.empty()      ? fs::path(o.output)
           : !spec.output.empty() ? fs::path(spec.output)
                                  : fs::path("sweeps") / fs::path(o.sweep).stem();
     const std::uint64_t seed = spec.seed ? *spec.seed : load_scene(spec.base_scene).seed;
@@ -196,9 +196,11 @@ int cmd_sweep(const CliOptions& o) {
   }
   if (!o.aggregate_only) {
     if (!o.quiet) {
-      std::fprintf(stderr, "sadr: sweep %s: %zu points x %zu realizations; %zu finished, %zu to run (%s executor)\n",
-                   dir.string().c_str(), m.points.size(), m.realizations, skipped, todo.size(),
-                   m.executor.type.c_str());
+      std::fprintf(
+          stderr,
+          "sadr: sweep %s: %zu points x %zu realizations; %zu finished, %zu to run (%s executor)\n",
+          dir.string().c_str(), m.points.size(), m.realizations, skipped, todo.size(),
+          m.executor.type.c_str());
     }
     ExecutorReport rep;
     if (!todo.empty()) {
@@ -212,8 +214,10 @@ int cmd_sweep(const CliOptions& o) {
   m.write(dir);
   const std::size_t failed = print_failures(m);
   if (failed > 0) {
-    std::fprintf(stderr, "sadr: %zu of %zu runs not finished; run again (sadr sweep --resume %s) "
-                 "to resume or retry them\n", failed, m.runs.size(), dir.string().c_str());
+    std::fprintf(stderr,
+                 "sadr: %zu of %zu runs not finished; run again (sadr sweep --resume %s) "
+                 "to resume or retry them\n",
+                 failed, m.runs.size(), dir.string().c_str());
     return interrupt_requested() ? kExitInterrupted : kExitServiceFailure;
   }
   std::fprintf(stderr, "sadr: sweep done: %zu runs; aggregates in %s/points, observables in %s\n",

@@ -26,8 +26,7 @@ namespace {
 
 /// fork + exec `sadr sweep-task DIR --index I -q` in a new process group,
 /// stdout and stderr into the run's worker.log.
-pid_t spawn_worker(const std::string& exe, const fs::path& dir, const SweepRun& run,
-                   int threads) {
+pid_t spawn_worker(const std::string& exe, const fs::path& dir, const SweepRun& run, int threads) {
   ensure_directory(dir / run.dir);
   const std::string log = (dir / run.dir / "worker.log").string();
   const std::string index = std::to_string(run.index);

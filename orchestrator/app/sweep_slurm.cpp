@@ -64,7 +64,9 @@ ExecutorReport run_slurm(SweepManifest& m, const fs::path& dir, std::vector<std:
   for (int round = 0; round <= m.retries && !todo.empty() && !interrupt_requested(); ++round) {
     const fs::path abs = fs::absolute(dir);
     std::string sbatch("sbatch --parsable --job-name=sadr-sweep --chdir=");
-    sbatch.append(d).append(" --output=").append(quote((abs / "runs" / "slurm-%A_%a.log").string()));
+    sbatch.append(d)
+        .append(" --output=")
+        .append(quote((abs / "runs" / "slurm-%A_%a.log").string()));
     sbatch.append(" --cpus-per-task=").append(std::to_string(e.cpus_per_task));
     if (!e.partition.empty()) sbatch.append(" --partition=").append(quote(e.partition));
     for (const auto& a : e.sbatch_args) sbatch.append(" ").append(quote(a));
@@ -73,7 +75,8 @@ ExecutorReport run_slurm(SweepManifest& m, const fs::path& dir, std::vector<std:
     sbatch.append(" --array=").append(join(todo)).append(" --wrap ").append(quote(task));
     const std::string array = capture(sbatch);
     const std::string job = array.substr(0, array.find(';'));
-    std::string aggregate("sbatch --parsable --job-name=sadr-sweep-aggregate --dependency=afterany:");
+    std::string aggregate(
+        "sbatch --parsable --job-name=sadr-sweep-aggregate --dependency=afterany:");
     aggregate.append(job).append(" --chdir=").append(d).append(" --output=");
     aggregate.append(quote((abs / "slurm-aggregate-%j.log").string()));
     std::string agg_cmd("exec ");

@@ -4,6 +4,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <signal.h>
+
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <thread>
+
 #include "cli_test_support.hpp"
 #include "sweep_test_support.hpp"
 
@@ -45,6 +52,230 @@ TEST(SceneOverrideCli, RunRecordsOverridesAndResumesWithThem) {
   EXPECT_NE(read_file(d / "e.log").find("(set by --set reactions[birth].rate=-1)"),
             std::string::npos)
       << read_file(d / "e.log");
+  if (!HasFailure()) fs::remove_all(d);
+}
+
+nlohmann::json manifest(const fs::path& dir) {
+  return nlohmann::json::parse(read_file(dir / "sweep.json"));
+}
+
+/// A sweep file next to `scene`.
+fs::path write_sweep(const fs::path& d, const std::string& body) {
+  const fs::path p = d / "sweep.yaml";
+  std::ofstream(p) << "scene: scene.yaml\n" << body;
+  return p;
+}
+
+std::string sweep_cmd(const fs::path& sweep, const fs::path& out, const std::string& extra = "") {
+  return bin("sadr") + " sweep " + sweep.string() + " -o " + out.string() + " " + extra;
+}
+
+TEST(SweepCli, GridAggregatesEqualNumpyAndDoNotDependOnTheWorkers) {
+  const fs::path d = scratch("sweep-grid");
+  write_scene(d, birth_death_scene(16, 400.0, 1.0, 0.4, "[0.2, 0.4]", "[csv]"));
+  const fs::path sweep = write_sweep(d,
+                                     "realizations: 4\nseed: 3\nkeep: all\n"
+                                     "parameters:\n  grid:\n    reactions[birth].rate: [200, 400]\n"
+                                     "executor: {type: local, workers: 2}\n");
+  ASSERT_EQ(run(sweep_cmd(sweep, d / "a"), d / "a.log"), 0) << read_file(d / "a.log");
+  const auto m = manifest(d / "a");
+  ASSERT_EQ(m["runs"].size(), 8u);
+  std::set<std::uint64_t> seeds;
+  for (const auto& r : m["runs"]) {
+    EXPECT_EQ(r["state"], "ok") << r.dump();
+    EXPECT_EQ(r["attempts"], 1);
+    seeds.insert(r["seed"].get<std::uint64_t>());
+  }
+  EXPECT_EQ(seeds.size(), 8u) << "every run has its own seed";
+  EXPECT_EQ(m["points"][1]["overrides"], nlohmann::json::array({"reactions[birth].rate=400"}));
+  EXPECT_EQ(m["aggregates"]["1"]["state"], "done");
+  // The run's manifest records the point's overrides and its seed.
+  const auto rj = nlohmann::json::parse(read_file(d / "a" / "runs" / "p0001_r0002" / "run.json"));
+  EXPECT_EQ(rj["overrides"][0], "reactions[birth].rate=400");
+  EXPECT_EQ(rj["seed"], m["runs"][6]["seed"]);
+  EXPECT_EQ(run("/usr/bin/python3 " + std::string(SADR_SOURCE_DIR) +
+                    "/tests/e2e/sweep_stats_check.py " + (d / "a").string(),
+                d / "numpy.log"),
+            0)
+      << read_file(d / "numpy.log");
+  // One worker instead of two: the same seeds, the same aggregates, byte for byte.
+  ASSERT_EQ(run(sweep_cmd(sweep, d / "b", "--workers 1"), d / "b.log"), 0)
+      << read_file(d / "b.log");
+  for (const char* f : {"points/p0000/frame_000002.csv", "points/p0001/frame_000001.vtu",
+                        "points/p0001/aggregate.pvd", "observables.csv"}) {
+    EXPECT_FALSE(read_file(d / "a" / f).empty()) << f;
+    EXPECT_TRUE(read_file(d / "a" / f) == read_file(d / "b" / f)) << f;
+  }
+  // Tidy observables: one row per run, frame and species.
+  const std::string obs = read_file(d / "a" / "observables.csv");
+  EXPECT_EQ(obs.substr(0, obs.find('\n')),
+            "point,realization,reactions[birth].rate,frame,time,species,total");
+  EXPECT_EQ(std::count(obs.begin(), obs.end(), '\n'), 1 + 8 * 3);
+  // Running it again runs nothing.
+  ASSERT_EQ(run(sweep_cmd(sweep, d / "a"), d / "c.log"), 0) << read_file(d / "c.log");
+  EXPECT_NE(read_file(d / "c.log").find("executed 0 runs, skipped 8 finished"), std::string::npos)
+      << read_file(d / "c.log");
+  if (!HasFailure()) fs::remove_all(d);
+}
+
+TEST(SweepCli, AFailedRunIsReportedTheOthersFinishAndAReRunCompletesIt) {
+  const fs::path d = scratch("sweep-fail");
+  write_scene(d, birth_death_scene(8, 400.0, 1.0, 0.4, "[0.2, 0.4]", "[csv, vtu]"));
+  const fs::path sweep = write_sweep(
+      d, "realizations: 2\nretries: 1\nparameters:\n  zip:\n    reactions[death].rate: [1, 2]\n");
+  // Bad input for one run: its run.json is a directory, so the run cannot write it.
+  fs::create_directories(d / "s" / "runs" / "p0001_r0000" / "run.json");
+  EXPECT_EQ(run(sweep_cmd(sweep, d / "s"), d / "a.log"), 3) << read_file(d / "a.log");
+  const std::string log = read_file(d / "s" / "../a.log");
+  EXPECT_NE(log.find("runs not finished"), std::string::npos) << log;
+  auto m = manifest(d / "s");
+  const auto& bad = m["runs"][2];
+  EXPECT_EQ(bad["state"], "failed") << bad.dump();
+  EXPECT_EQ(bad["exit_code"], 5) << bad.dump();  // I/O failure
+  EXPECT_NE(bad["reason"].get<std::string>().find("run.json"), std::string::npos) << bad.dump();
+  EXPECT_EQ(bad["attempts"], 2) << "retried once";
+  for (int i : {0, 1, 3}) EXPECT_EQ(m["runs"][i]["state"], "ok") << m["runs"][i].dump();
+  EXPECT_EQ(m["aggregates"]["0"]["state"], "done");
+  EXPECT_EQ(m["aggregates"]["1"]["state"], "incomplete");
+  // Fixed, the re-run executes only the failed run.
+  fs::remove_all(d / "s" / "runs" / "p0001_r0000" / "run.json");
+  ASSERT_EQ(run(sweep_cmd(sweep, d / "s"), d / "b.log"), 0) << read_file(d / "b.log");
+  EXPECT_NE(read_file(d / "b.log").find("executed 1 runs, skipped 3 finished"), std::string::npos)
+      << read_file(d / "b.log");
+  m = manifest(d / "s");
+  for (int i : {0, 1, 3}) EXPECT_EQ(m["runs"][i]["attempts"], 1) << "not recomputed";
+  EXPECT_EQ(m["runs"][2]["attempts"], 3);
+  EXPECT_EQ(m["aggregates"]["1"]["state"], "done");
+  // keep: aggregates: realization 0 keeps its frames, realization 1 only its manifests.
+  EXPECT_TRUE(fs::exists(d / "s" / "runs" / "p0001_r0000" / "frames"));
+  EXPECT_FALSE(fs::exists(d / "s" / "runs" / "p0001_r0001" / "frames"));
+  EXPECT_EQ(m["runs"][3]["kept"], "run.json, result.json, worker.log");
+  EXPECT_EQ(m["runs"][2]["kept"], "all");
+  if (!HasFailure()) fs::remove_all(d);
+}
+
+TEST(SweepCli, AKilledWorkerIsReportedAndTheReRunResumesItFromItsCheckpoint) {
+  const fs::path d = scratch("sweep-kill");
+  // About a million events per run, a checkpoint every 0.5.
+  std::string scene = birth_death_scene(16, 4e5, 1.0, 2.0, "[1.0, 2.0]", "[csv]");
+  scene =
+      scene.replace(scene.find("formats: [csv]}"), 15, "formats: [csv], checkpoint_every: 0.5}");
+  write_scene(d, scene);
+  const fs::path sweep = write_sweep(
+      d, "realizations: 2\nretries: 0\nkeep: all\nexecutor: {type: local, workers: 1}\n");
+  const fs::path out = d / "s";
+  std::thread killer([&] {
+    const fs::path cp = out / "runs" / "p0000_r0000" / "checkpoint" / "checkpoint.json";
+    for (int i = 0; i < 3000 && !fs::exists(cp); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    // The worker's pid (the [s] keeps pgrep from matching its own shell), then SIGKILL.
+    FILE* p = popen(("pgrep -f '[s]weep-task " + out.string() + " --index 0 '").c_str(), "r");
+    int pid = 0;
+    if (p != nullptr) {
+      if (std::fscanf(p, "%d", &pid) != 1) pid = 0;
+      pclose(p);
+    }
+    if (pid > 0) kill(pid, SIGKILL);
+  });
+  const int rc = run(sweep_cmd(sweep, out), d / "a.log");
+  killer.join();
+  auto m = manifest(out);
+  if (m["runs"][0]["state"] == "ok") {
+    GTEST_SKIP() << "run 0 finished before it could be killed (machine too fast); nothing checked";
+  }
+  EXPECT_EQ(rc, 3) << read_file(d / "a.log");
+  EXPECT_EQ(m["runs"][0]["state"], "failed");
+  EXPECT_EQ(m["runs"][0]["exit_code"], 128 + 9);
+  EXPECT_NE(m["runs"][0]["reason"].get<std::string>().find("killed by signal 9"), std::string::npos)
+      << m["runs"][0].dump();
+  EXPECT_EQ(m["runs"][1]["state"], "ok") << "the other run went on";
+  ASSERT_EQ(run(sweep_cmd(sweep, out), d / "b.log"), 0) << read_file(d / "b.log");
+  EXPECT_NE(read_file(d / "b.log").find("executed 1 runs, skipped 1 finished"), std::string::npos)
+      << read_file(d / "b.log");
+  const auto res = nlohmann::json::parse(read_file(out / "runs" / "p0000_r0000" / "result.json"));
+  EXPECT_EQ(res["resumed"], true) << res.dump();
+  m = manifest(out);
+  EXPECT_EQ(m["runs"][1]["attempts"], 1);
+  EXPECT_EQ(m["aggregates"]["0"]["state"], "done");
+  if (!HasFailure()) fs::remove_all(d);
+}
+
+TEST(SweepCli, ConfidenceIntervalsCoverTheExactBirthDeathMean) {
+  // 400 independent voxels, X(1) ~ Poisson(lambda), lambda = 10 (1 - e^-1),
+  // R = 10 realizations: the t interval covers lambda with probability
+  // p = 0.9475 (numpy, 2e6 Poisson samples, +-0.0002). Covered voxels ~
+  // Binomial(400, p): mean 379, sd 4.46; accepted within 4 sd (false-failure
+  // rate 6e-5). The grand mean of 4000 samples: sd sqrt(lambda / 4000) = 0.040.
+  const fs::path d = scratch("sweep-coverage");
+  write_scene(d, birth_death_scene(400, 4000.0, 1.0, 1.0, "[1.0]", "[csv]"));
+  const fs::path sweep = write_sweep(d, "realizations: 10\nseed: 77\n");
+  ASSERT_EQ(run(sweep_cmd(sweep, d / "s"), d / "a.log"), 0) << read_file(d / "a.log");
+  const CsvFrame f = read_csv(d / "s" / "points" / "p0000" / "frame_000001.csv");
+  const double lambda = 10.0 * (1.0 - std::exp(-1.0));
+  ASSERT_EQ(f.rows(), 400u);
+  int covered = 0;
+  double grand = 0;
+  for (std::size_t i = 0; i < f.rows(); ++i) {
+    covered += f.column("A_ci95_lo")[i] <= lambda && lambda <= f.column("A_ci95_hi")[i];
+    grand += f.column("A_mean")[i] / 400.0;
+  }
+  const double sd = std::sqrt(400 * 0.9475 * 0.0525);
+  EXPECT_NEAR(covered, 400 * 0.9475, 4 * sd) << covered << " of 400 intervals cover " << lambda;
+  EXPECT_NEAR(grand, lambda, 4 * std::sqrt(lambda / 4000.0));
+  if (!HasFailure()) fs::remove_all(d);
+}
+
+TEST(SweepCli, AnInvalidPointIsRefusedBeforeAnythingRuns) {
+  const fs::path d = scratch("sweep-invalid");
+  write_scene(d, birth_death_scene(8, 400.0, 1.0, 0.4, "[0.4]", "[csv]"));
+  const fs::path sweep =
+      write_sweep(d,
+                  "parameters:\n  points:\n    - {\"reactions[birth].rate\": 1}\n"
+                  "    - reactions[birth].rate: -1\n");
+  EXPECT_EQ(run(sweep_cmd(sweep, d / "s"), d / "a.log"), 1);
+  const std::string log = read_file(d / "a.log");
+  EXPECT_NE(log.find("point 1: "), std::string::npos) << log;
+  EXPECT_NE(log.find("(set by --set reactions[birth].rate=-1)"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(d / "s" / "sweep.json"));
+  const fs::path typo = d / "typo.yaml";
+  std::ofstream(typo) << "scene: scene.yaml\nrealisations: 2\n";
+  EXPECT_EQ(run(bin("sadr") + " sweep " + typo.string() + " -o " + (d / "t").string(), d / "b.log"),
+            1);
+  EXPECT_NE(read_file(d / "b.log").find("did you mean 'realizations'?"), std::string::npos)
+      << read_file(d / "b.log");
+  if (!HasFailure()) fs::remove_all(d);
+}
+
+TEST(EnsembleCli, BadCellsNaNsAndMissingFramesAreRefusedNamingFileAndRow) {
+  const fs::path d = scratch("ensemble-bad");
+  const fs::path scene =
+      write_scene(d, birth_death_scene(8, 400.0, 1.0, 0.4, "[0.2, 0.4]", "[csv]"));
+  ASSERT_EQ(run(bin("sadr") + " run " + scene.string() + " -q -r 3 -o " + (d / "e").string(),
+                d / "run.log"),
+            0)
+      << read_file(d / "run.log");
+  const fs::path frame = d / "e" / "realization_0001" / "frames" / "frame_000001.csv";
+  const std::string good = read_file(frame);
+  const std::string ens = bin("sadr") + " ensemble " + (d / "e").string();
+  const auto second_row_end = good.find('\n', good.find('\n') + 1);
+  for (const char* value : {"abc", "nan"}) {
+    std::string bad = good;
+    const auto last_comma = bad.rfind(',', second_row_end);
+    bad.replace(last_comma + 1, second_row_end - last_comma - 1, value);
+    std::ofstream(frame) << bad;
+    EXPECT_EQ(run(ens, d / "bad.log"), 1) << value;
+    EXPECT_NE(read_file(d / "bad.log")
+                  .find(frame.string() + ":2: column 'A': '" + value + "' is not a finite number"),
+              std::string::npos)
+        << read_file(d / "bad.log");
+  }
+  std::ofstream(frame) << good;
+  fs::remove(d / "e" / "realization_0002" / "frames" / "frame_000002.csv");
+  EXPECT_EQ(run(ens, d / "missing.log"), 1);
+  EXPECT_NE(read_file(d / "missing.log").find("frame frame_000002.csv is missing"),
+            std::string::npos)
+      << read_file(d / "missing.log");
   if (!HasFailure()) fs::remove_all(d);
 }
 

@@ -41,9 +41,9 @@ std::vector<SpeciesColumn> columns_of(const CsvFrame& f) {
 
 }  // namespace
 
-PointAggregate aggregate_point(std::span<const fs::path> runs, std::span<const std::string> prefixes,
-                               const fs::path& out, const std::string& name,
-                               std::ostream& observables) {
+PointAggregate aggregate_point(std::span<const fs::path> runs,
+                               std::span<const std::string> prefixes, const fs::path& out,
+                               const std::string& name, std::ostream& observables) {
   if (runs.empty()) throw InvalidArgument("aggregate: no runs");
   PointAggregate result;
   std::optional<EnsembleAccumulator> acc;
@@ -59,7 +59,8 @@ PointAggregate aggregate_point(std::span<const fs::path> runs, std::span<const s
       for (const auto& [k, f] : first) {
         if (!frames.count(k)) {
           throw InvalidArgument(runs[r].string() + ": frame " + std::to_string(k) +
-                                " is missing (" + runs[0].string() + " has it); refusing to "
+                                " is missing (" + runs[0].string() +
+                                " has it); refusing to "
                                 "average it over fewer realizations");
         }
       }
@@ -116,8 +117,9 @@ PointAggregate aggregate_point(std::span<const fs::path> runs, std::span<const s
     }
   }
   if (!result.positions_identical) {
-    result.notes.push_back("positions differ between realizations; the .vtu files carry "
-                           "realization 0's positions");
+    result.notes.push_back(
+        "positions differ between realizations; the .vtu files carry "
+        "realization 0's positions");
   }
   ensure_directory(out);
   PvdCollection pvd(out / (name + ".pvd"));

@@ -85,7 +85,8 @@ CsvFrame read_frame_csv(const fs::path& path) {
       f.species[c - kFirstSpecies].values.push_back(cells[c]);
     }
   }
-  if (f.particles.ids.empty()) throw InvalidArgument(path.string() + ": header only, no particle rows");
+  if (f.particles.ids.empty())
+    throw InvalidArgument(path.string() + ": header only, no particle rows");
   return f;
 }
 

@@ -37,10 +37,10 @@ std::string_view to_string(RunState state) {
 }
 
 void write_run_outcome(const fs::path& dir, const RunOutcome& o) {
-  const json j{{"state", to_string(o.state)}, {"exit_code", o.exit_code},
-               {"reason", o.reason},          {"scene_hash", o.scene_hash},
-               {"resumed", o.resumed},        {"attempts", o.attempts},
-               {"written_utc", utc_now_iso8601()}};
+  const json j{
+      {"state", to_string(o.state)},     {"exit_code", o.exit_code}, {"reason", o.reason},
+      {"scene_hash", o.scene_hash},      {"resumed", o.resumed},     {"attempts", o.attempts},
+      {"written_utc", utc_now_iso8601()}};
   write_file_atomic(dir / "result.json", j.dump(2) + "\n");
 }
 
@@ -98,9 +98,9 @@ std::vector<SceneOverride> SweepManifest::overrides_of(const SweepRun& r) const 
 
 const SweepRun& SweepManifest::run(std::size_t index) const {
   if (index >= runs.size()) {
-    throw InvalidArgument("run index " + std::to_string(index) + " is out of range: the sweep has " +
-                          std::to_string(runs.size()) + " runs (0.." +
-                          std::to_string(runs.size() - 1) + ")");
+    throw InvalidArgument("run index " + std::to_string(index) +
+                          " is out of range: the sweep has " + std::to_string(runs.size()) +
+                          " runs (0.." + std::to_string(runs.size() - 1) + ")");
   }
   return runs[index];
 }
@@ -207,7 +207,8 @@ SweepManifest SweepManifest::from_json(const json& j, const std::string& source)
     m.parameters = j.at("parameters").get<std::vector<std::string>>();
     for (const auto& p : j.at("points")) {
       SweepPoint sp{p.at("index").get<std::size_t>(), {}};
-      for (const auto& t : p.at("overrides")) sp.overrides.push_back(parse_override(t.get<std::string>()));
+      for (const auto& t : p.at("overrides"))
+        sp.overrides.push_back(parse_override(t.get<std::string>()));
       m.points.push_back(std::move(sp));
       m.point_seeds.push_back(p.at("seed").get<std::uint64_t>());
     }

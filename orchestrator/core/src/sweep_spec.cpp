@@ -95,7 +95,8 @@ void read_parameters(YamlReader& r, const Field& root, SweepSpec& s) {
     if (values.size() != rows) {
       r.error(YamlReader::child(zf, path), "has " + std::to_string(values.size()) +
                                                " values but '" + zip[0].first + "' has " +
-                                               std::to_string(rows) + "; zipped lists must have "
+                                               std::to_string(rows) +
+                                               "; zipped lists must have "
                                                "equal lengths");
     }
   }
@@ -166,8 +167,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::filesystem::path&
     std::filesystem::path p(*scene);
     s.base_scene = p.is_absolute() ? p : std::filesystem::absolute(source).parent_path() / p;
     if (!std::filesystem::is_regular_file(s.base_scene)) {
-      r.error(YamlReader::child(root, "scene"),
-              s.base_scene.string() + " is not a readable file");
+      r.error(YamlReader::child(root, "scene"), s.base_scene.string() + " is not a readable file");
     }
   }
   s.realizations = r.integer(root, "realizations", 1, 1000000, false).value_or(1);

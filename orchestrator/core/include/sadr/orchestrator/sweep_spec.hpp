@@ -21,10 +21,10 @@ enum class KeepPolicy {
 };
 
 struct ExecutorSpec {
-  std::string type = "local";  ///< "local" or "slurm"
-  int workers = 0;             ///< local: parallel runs (0 = number of cores)
-  int cpus_per_task = 1;       ///< slurm: --cpus-per-task of each array task
-  std::string partition;       ///< slurm: --partition ("" = the cluster's default)
+  std::string type = "local";            ///< "local" or "slurm"
+  int workers = 0;                       ///< local: parallel runs (0 = number of cores)
+  int cpus_per_task = 1;                 ///< slurm: --cpus-per-task of each array task
+  std::string partition;                 ///< slurm: --partition ("" = the cluster's default)
   std::vector<std::string> sbatch_args;  ///< slurm: extra sbatch arguments
   double poll_seconds = 2.0;             ///< slurm: squeue polling period [s]
 };
@@ -37,8 +37,8 @@ struct SweepPoint {
 };
 
 struct SweepSpec {
-  std::filesystem::path source;      ///< the sweep file
-  std::filesystem::path base_scene;  ///< absolute (relative paths are relative to the file)
+  std::filesystem::path source;         ///< the sweep file
+  std::filesystem::path base_scene;     ///< absolute (relative paths are relative to the file)
   std::vector<std::string> parameters;  ///< override paths, in the order of the columns
   std::vector<SweepPoint> points;
   std::size_t realizations = 1;
