@@ -111,6 +111,15 @@ TEST(SweepCli, GridAggregatesEqualNumpyAndDoNotDependOnTheWorkers) {
   EXPECT_EQ(obs.substr(0, obs.find('\n')),
             "point,realization,reactions[birth].rate,frame,time,species,total");
   EXPECT_EQ(std::count(obs.begin(), obs.end(), '\n'), 1 + 8 * 3);
+  // The summary plot of the total against the swept rate (python3-matplotlib).
+  ASSERT_EQ(run("/usr/bin/python3 " + std::string(SADR_SOURCE_DIR) +
+                    "/orchestrator/app/sweep_plot.py " + (d / "a").string(),
+                d / "plot.log"),
+            0)
+      << read_file(d / "plot.log");
+  EXPECT_EQ(read_file(d / "a" / "summary.png").substr(1, 3), "PNG");
+  EXPECT_NE(read_file(d / "plot.log").find("\n200.0,62.5,"), std::string::npos)
+      << read_file(d / "plot.log");
   // Running it again runs nothing.
   ASSERT_EQ(run(sweep_cmd(sweep, d / "a"), d / "c.log"), 0) << read_file(d / "c.log");
   EXPECT_NE(read_file(d / "c.log").find("executed 0 runs, skipped 8 finished"), std::string::npos)
