@@ -211,7 +211,7 @@ void print_summary(const fs::path& dir, std::FILE* out) {
   if (t.events_recorded) {
     std::fprintf(out, "  SSA events: %.0f (reactions + diffusion jumps)\n", t.events);
   } else {
-    std::fprintf(out, "  SSA events: not in run.json\n");
+    std::fprintf(out, "  SSA events: not in run.json (written before sadr recorded them)\n");
   }
   print_species(out, sorted_files(dir / (is_run ? "frames" : "ensemble"), ".csv"), !is_run,
                 first.value("plan", nlohmann::json::object()));

@@ -234,6 +234,7 @@ void SplittingLoop::finish_ssa(const SsaJob& job) {
   stats_.timings_s["ssa"] += job.call_seconds;
   stats_.timings_s["ssa_graph"] += job.result.graph_seconds;
   stats_.timings_s["ssa_nsm"] += job.result.nsm_seconds;
+  stats_.ssa_events += job.result.events;
   if (!s_.back_transfer.empty()) {
     counts_ = job.result.counts;
     has_counts_ = true;

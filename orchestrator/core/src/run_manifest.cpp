@@ -38,6 +38,7 @@ nlohmann::json RunManifest::to_json() const {
           {"steps", steps},
           {"overlapped_steps", overlapped_steps},
           {"fluid_substeps", fluid_substeps},
+          {"ssa_events", ssa_events},
           {"time", time},
           {"timings_s", timings_s},
           {"frames", frames},

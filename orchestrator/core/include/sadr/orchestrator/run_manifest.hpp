@@ -38,6 +38,8 @@ struct RunManifest {
   /// Fluid sub-steps taken by this invocation (a resumed run counts from the resume):
   /// with `timings_s` and the steps done here, how many sub-steps a coupling step costs.
   std::uint64_t fluid_substeps = 0;
+  /// SSA events (reactions + diffusion jumps) of this invocation, as fluid_substeps.
+  std::uint64_t ssa_events = 0;
   double time = 0.0;  ///< simulated time reached [time]
   /// Wall-clock seconds per part: "fluid" (fluid calls), "fluid_compute" (inside
   /// the service), "ssa" (SSA calls), "ssa_graph", "ssa_nsm" (inside the
