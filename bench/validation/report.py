@@ -21,6 +21,8 @@ window for figures to quote. The pieces:
     work-precision diagram against the paper's points and the paper code's cost;
   * Poiseuille start-up error against resolution (fluid_error_sweep) and the
     example's centre-line speed (poiseuille_example.py);
+  * Lie vs Strang against the exact continuous answer, observed orders
+    (splitting_order.py);
   * the plan's skips with and without (skip_bench.py; needs a build from before
     the skip, --without; otherwise the stored bench/results/skip_frame_to_frame.md).
 """
@@ -37,6 +39,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from measure import ROOT, commit, run_measured  # noqa: E402
 import annihilation_table1  # noqa: E402
 import poiseuille_example  # noqa: E402
+import splitting_order  # noqa: E402
 import wp_plots  # noqa: E402
 
 # drawert2019 Table 1 and the paper code's cost on this machine type (issue #20).
@@ -172,6 +175,10 @@ def main():
 
     step("poiseuille example")
     data["poiseuille_example"] = poiseuille_example.measure(build / "bin")
+
+    step("splitting order")
+    data["splitting"] = splitting_order.run(build / "bin")
+    splitting_order.plot(data["splitting"], figs / "splitting_order.png")
 
     skip_json = ROOT / "bench/results/skip_frame_to_frame.json"
     if pathlib.Path(a.without, "sadr").exists():
