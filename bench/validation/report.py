@@ -109,7 +109,8 @@ def fluid_error_sweep(build, work):
     exe = build / "bench/fluid/fluid_error_sweep"
     log = work / "fluid_error_sweep.csv"
     r = run_measured([exe], log=log)
-    rows = [l.split(",") for l in log.read_text().splitlines()[1:] if l.count(",") == 5]
+    rows = [l.split(",") for l in log.read_text().splitlines()
+            if l.count(",") == 5 and l.split(",")[1].isdigit()]  # data rows, not the header
     return {"cpu_s": r["cpu_s"], "command": str(exe.relative_to(ROOT) if exe.is_relative_to(ROOT) else exe),
             "rows": [{"case": c, "res": int(n), "dt": float(dt), "error": float(e),
                       "cpu_s": float(cpu)} for c, n, dt, e, cpu, _ in rows]}
@@ -130,6 +131,8 @@ def main():
                          "'none' for none (a quick look at the rest)")
     ap.add_argument("--ssa", default="",
                     help="Table 1 SSA cases N:N_b:R:t_end,... instead of the mode's")
+    ap.add_argument("--reuse", default="",
+                    help="a data.json of an earlier run: take its gtest results (same commit!)")
     a = ap.parse_args()
     only = set(filter(None, a.only.split(",")))
     build = pathlib.Path(a.build).resolve()
@@ -147,11 +150,16 @@ def main():
     def step(msg):
         print(f"[{datetime.datetime.now():%H:%M:%S}] {msg}", flush=True)
 
+    reuse = json.loads(pathlib.Path(a.reuse).read_text()).get("gtests", {}) if a.reuse else {}
     for gid, binary, flt, in_quick, *_ in GTESTS:
         if (only and gid not in only) or (not only and quick and not in_quick):
             continue
+        if gid in reuse:
+            data["gtests"][gid] = reuse[gid]
+            continue
         step(f"gtest {gid}")
         data["gtests"][gid] = run_gtest(build, binary, flt, work)
+        (figs / "data.json").write_text(json.dumps(data, indent=1, default=str) + "\n")
 
     step("fluid_error_sweep")
     data["sweep"] = fluid_error_sweep(build, work)

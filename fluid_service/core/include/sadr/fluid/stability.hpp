@@ -42,9 +42,14 @@ struct StabilityLimits {
     take(reaction, "reaction");
     return best;
   }
-  /// Throws InvalidArgument naming the first limit that dt [time] breaks.
+  /// Throws InvalidArgument naming the tightest limit that dt [time] breaks.
   void check(double dt) const;
 };
+
+/// With force_time_step: warns (log::warn, once per limit name per process) when the forced
+/// sub-step dt [time] breaks the binding limit, since such a run may give wrong but finite
+/// results (bench/validation/stability_map.py); returns whether it warned.
+bool warn_forced_substep(const StabilityLimits& limits, double dt);
 
 /// One sub-step chosen by next_substep().
 struct Substep {
