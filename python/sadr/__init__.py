@@ -21,6 +21,7 @@ from .regions import Box, Disk, Everything, Kinds, Region
 from .runs import Ensemble, Run, open_output
 from .scene import Scene
 from .series import band, observe
+from .sweeps import Sweep
 
 open = open_output  # noqa: A001 - sadr.open(path), like xarray.open_dataset
 
@@ -37,7 +38,7 @@ def __getattr__(name):
 __all__ = [
     "Box", "Disk", "Ensemble", "Everything", "EXIT_CODES", "Frame", "FrameFormatError",
     "InvalidInput", "Interrupted", "IoFailure", "KIND_NAMES", "Kinds", "NumericalFailure",
-    "Region", "Run", "SadrError", "Scene", "ServiceFailure", "UsageError", "band", "find_sadr",
+    "Region", "Run", "SadrError", "Scene", "ServiceFailure", "Sweep", "UsageError", "band", "find_sadr",
     "observe", "open", "open_output", "plot_particles", "plot_profile", "plot_series",
     "plot_sweep", "profile", "read_csv_frame", "read_ensemble_frame", "read_frame", "read_pvd",
     "read_vtk_arrays", "read_vtk_frame", "run_cli",

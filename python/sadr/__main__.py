@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
-"""`python3 -m sadr plot RUN [-o PNG] [--species S]`: the overview figure of a
-run (sadr.plots.overview) as a PNG; `python3 -m sadr series RUN`: the species
-totals per frame as CSV on stdout."""
+"""`python3 -m sadr plot DIR [-o PNG] [--species S] [--parameter P]`: the
+overview figure of a run (sadr.plots.overview), or for a sweep directory the
+species total at the last frame against a swept parameter (sadr.plot_sweep),
+as a PNG; `python3 -m sadr series RUN`: the species totals per frame as CSV."""
 import argparse
 import sys
 from pathlib import Path
@@ -15,7 +16,8 @@ def main(argv=None) -> int:
     plot = sub.add_parser("plot", help="overview PNG of a run")
     plot.add_argument("run", type=Path, help="output directory of `sadr run`")
     plot.add_argument("-o", "--output", type=Path, help="PNG path (default: RUN/overview.png)")
-    plot.add_argument("--species", help="species to colour by (default: the first)")
+    plot.add_argument("--species", help="species to colour by / plot (default: the first)")
+    plot.add_argument("--parameter", help="sweep: the swept path on the x axis (default: the first)")
     plot.add_argument("--dpi", type=int, default=80)
     series = sub.add_parser("series", help="species totals per frame (CSV)")
     series.add_argument("run", type=Path)
@@ -25,6 +27,18 @@ def main(argv=None) -> int:
     except (FileNotFoundError, ValueError) as e:
         print(f"python3 -m sadr: error: {e}", file=sys.stderr)
         return 1
+    from .sweeps import Sweep
+
+    if isinstance(run, Sweep) and args.command == "plot":
+        from .plots import plot_sweep
+
+        table = run.table()
+        species = args.species or next(c for c in table.columns[len(run.parameters) + 4:])
+        fig = plot_sweep(table, args.parameter or run.parameters[0], species)
+        out = args.output or args.run / "summary.png"
+        fig.savefig(out, dpi=args.dpi)
+        print(f"python3 -m sadr: wrote {out}")
+        return 0
     if not hasattr(run, "frame"):
         print(f"python3 -m sadr: error: {args.run} is not a single run (pick one realization_NNNN)",
               file=sys.stderr)

@@ -35,7 +35,8 @@ def realization_command(scene, output, sadr_bin=None) -> list:
 
 
 def realization_env(index: int, threads: int = 1) -> dict:
-    """The task's environment: this one plus the array index and its threads."""
+    """A task's environment: this one plus the array index (as a Kubernetes
+    Indexed Job's, which `--realization env` and `sweep-task` read) and its threads."""
     env = dict(os.environ)
     env.pop("SLURM_ARRAY_TASK_ID", None)  # --realization env reads it before JOB_COMPLETION_INDEX
     env["JOB_COMPLETION_INDEX"] = str(index)
@@ -63,3 +64,37 @@ def run_ensemble(scene, output, realizations: int, client, *, sadr_bin=None, thr
     if combine:
         run_cli(["ensemble", output])
     return Ensemble(output)
+
+
+def run_sweep(sweep_file, output, client, *, sadr_bin=None, threads: int = 1):
+    """A `sadr sweep` whose runs are Dask tasks: prepares ``output`` (``sadr
+    sweep FILE -o OUT --aggregate-only`` writes sweep.json with every run
+    pending), runs each unfinished run as ``sadr sweep-task OUT -q`` with its
+    index in ``JOB_COMPLETION_INDEX`` (the Slurm array task's command), then
+    aggregates with ``sadr sweep --resume OUT --aggregate-only``. Returns the
+    sadr.Sweep; a failed run raises the SadrError of its exit code."""
+    from .sweeps import Sweep
+
+    output = Path(output).resolve()
+    sadr_bin = str(sadr_bin or find_sadr())
+    if not (output / "sweep.json").is_file():
+        proc = run_cli(["sweep", Path(sweep_file).resolve(), "-o", output, "--aggregate-only", "-q"],
+                       check=False)
+        if proc.returncode not in (0, 3) or not (output / "sweep.json").is_file():
+            cls = EXIT_CODES.get(proc.returncode, SadrError)
+            raise cls(f"sadr sweep exited with {proc.returncode}: {_message(proc.stderr)}",
+                      proc.returncode, proc.args, proc.stderr)
+    pending = [r["index"] for r in Sweep(output).manifest["runs"] if r["state"] != "ok"]
+    cmd = [sadr_bin, "sweep-task", str(output), "-q"]
+    futures = [client.submit(subprocess.run, cmd, env=realization_env(i, threads),
+                             capture_output=True, text=True, key=f"sadr-sweep-task-{i}-{output.name}",
+                             pure=False)
+               for i in pending]
+    failed = [(i, p) for i, p in zip(pending, client.gather(futures)) if p.returncode != 0]
+    run_cli(["sweep", "--resume", output, "--aggregate-only", "-q"], check=not failed)
+    if failed:
+        i, proc = failed[0]
+        cls = EXIT_CODES.get(proc.returncode, SadrError)
+        raise cls(f"{len(failed)} sweep run(s) failed; run {i}: sadr exited with {proc.returncode}: "
+                  f"{_message(proc.stderr)}", proc.returncode, cmd, proc.stderr)
+    return Sweep(output)

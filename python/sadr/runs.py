@@ -173,10 +173,15 @@ class Ensemble:
 
 
 def open_output(path):
-    """A sadr.Run or sadr.Ensemble for an output directory, by its layout."""
+    """A sadr.Run, sadr.Ensemble or sadr.Sweep for an output directory, by its layout."""
     path = Path(path)
+    from .sweeps import Sweep, is_sweep
+
+    if is_sweep(path):
+        return Sweep(path)
     if (path / "run.json").is_file():
         return Run(path)
     if any(path.glob("realization_*")):
         return Ensemble(path)
-    raise FileNotFoundError(f"{path}: neither a run (run.json) nor an ensemble (realization_NNNN/)")
+    raise FileNotFoundError(f"{path}: neither a run (run.json), an ensemble (realization_NNNN/) "
+                            "nor a sweep (sweep.json)")
