@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""One-line plots returning a matplotlib Figure (the Agg backend unless one is
-already chosen, so they work without a display):
+"""One-line plots returning a matplotlib Figure (the Agg backend unless one was
+chosen with MPLBACKEND or by importing pyplot first, so they work without a display):
 
     sadr.plot_particles(frame, color="T")          # particles coloured by a field
     sadr.plot_profile(frame, "vx", [0.5, 0], [0.5, 1])
@@ -11,9 +11,14 @@ Each takes ``ax=`` to draw into existing axes and returns that axes' figure.
 """
 from __future__ import annotations
 
+import os
+import sys
+
 import matplotlib
 
-if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
+# Agg (no display needed) unless the user chose a backend: MPLBACKEND (Jupyter
+# sets it to its inline backend) or pyplot imported before this module.
+if "MPLBACKEND" not in os.environ and "matplotlib.pyplot" not in sys.modules:
     matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
