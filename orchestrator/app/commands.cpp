@@ -136,6 +136,10 @@ RunResult run_realization(const Scene& scene, const Plan& plan, const CliOptions
 
 int report_failure(const std::exception& e) {
   std::fprintf(stderr, "sadr: error: %s\n", e.what());
+  return exit_code_of(e);
+}
+
+int exit_code_of(const std::exception& e) {
   if (dynamic_cast<const IoError*>(&e)) return kExitIoFailure;
   if (const auto* err = dynamic_cast<const Error*>(&e)) {
     switch (err->code()) {
@@ -243,7 +247,14 @@ int cmd_run(const CliOptions& o) {
   int next_to_add = 0;
   std::mutex mutex;
   std::atomic<int> next{0}, done{0};
-  std::exception_ptr failure;
+  std::vector<FailedRealization> failed;
+  auto flush = [&] {  // under `mutex`
+    for (auto it = pending.find(next_to_add); it != pending.end();
+         it = pending.find(++next_to_add)) {
+      for (const auto& [k, f] : it->second) ensemble.add(k, f.first, f.second);
+      pending.erase(it);
+    }
+  };
   const auto t0 = std::chrono::steady_clock::now();
   auto worker = [&] {
     for (int r; (r = next++) < r_count && !g_interrupt;) {
@@ -261,11 +272,7 @@ int cmd_run(const CliOptions& o) {
                                               out / name, nullptr, base);
         std::lock_guard lock(mutex);
         if (!res.interrupted) pending.emplace(r, std::move(frames));
-        for (auto it = pending.find(next_to_add); it != pending.end();
-             it = pending.find(++next_to_add)) {
-          for (const auto& [k, f] : it->second) ensemble.add(k, f.first, f.second);
-          pending.erase(it);
-        }
+        flush();
         const int d = ++done;
         const double el =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -273,17 +280,20 @@ int cmd_run(const CliOptions& o) {
           std::fprintf(stderr, "sadr: realization %d done (%d/%d), elapsed %.1f s, ETA %.1f s\n", r,
                        d, r_count, el, el / d * (r_count - d));
         }
-      } catch (...) {
+      } catch (const std::exception& e) {
+        // Recorded; the other realizations go on (docs/sweeps.md: faults).
         std::lock_guard lock(mutex);
-        if (!failure) failure = std::current_exception();
-        g_interrupt = true;  // stop the other workers (they checkpoint)
+        failed.push_back({r, exit_code_of(e), e.what()});
+        std::fprintf(stderr, "sadr: realization %d failed: %s\n", r, e.what());
+        pending.emplace(r, Frames{});  // adds nothing; the later ones are added in order
+        flush();
       }
     }
   };
   std::vector<std::thread> pool;
   for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  write_ensemble_manifest(out, scene, r_count, failed);
   ensure_directory(out / "ensemble");
   for (std::size_t k = 0; k < ensemble.frame_count(); ++k) {
     if (ensemble.realizations(k) == 0) continue;
@@ -293,12 +303,14 @@ int cmd_run(const CliOptions& o) {
   }
   std::fprintf(stderr, "sadr: %d realizations; ensemble mean/variance in %s\n", done.load(),
                (out / "ensemble").string().c_str());
+  if (!failed.empty()) return report_failed_realizations(out, failed);
   if (!g_interrupt) summarize_at_end(out, o.quiet);
   return g_interrupt ? kExitInterrupted : kExitOk;
 }
 
 int cmd_resume(const CliOptions& o) {
   install_signal_handlers();
+  if (fs::exists(fs::path(o.checkpoint) / "ensemble.json")) return resume_ensemble(o, o.checkpoint);
   LoadedCheckpoint cp = load_checkpoint(o.checkpoint, "");
   fs::path manifest_path = o.checkpoint;
   if (fs::is_directory(manifest_path)) manifest_path /= std::string(kCheckpointManifestName);

@@ -86,5 +86,24 @@ RunResult run_realization(const Scene& scene, const Plan& plan, const CliOptions
 
 /// Maps an exception to an exit code and prints it ("sadr: error: ...").
 int report_failure(const std::exception& e);
+/// The exit code of an exception (see ExitCode), without printing.
+int exit_code_of(const std::exception& e);
+
+/// A realization of `sadr run -r R` that failed (the others go on).
+struct FailedRealization {
+  int realization = 0;
+  int exit_code = 0;
+  std::string reason;
+};
+/// DIR/ensemble.json: scene, overrides, R and the failed realizations, for
+/// `sadr resume DIR` (ensemble_command.cpp).
+void write_ensemble_manifest(const std::filesystem::path& dir, const Scene& scene, int realizations,
+                             const std::vector<FailedRealization>& failed);
+/// Prints the table of failed realizations and how to resume; returns the exit code (3).
+int report_failed_realizations(const std::filesystem::path& dir,
+                               const std::vector<FailedRealization>& failed);
+/// `sadr resume DIR` for an ensemble folder: runs or resumes every realization
+/// that did not finish, then recombines DIR/ensemble/ from the CSV frames.
+int resume_ensemble(const CliOptions& options, const std::filesystem::path& dir);
 
 }  // namespace sadr::orchestrator

@@ -5,14 +5,94 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
+
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/ensemble_accumulator.hpp"
+#include "sadr/orchestrator/hash.hpp"
+#include "sadr/orchestrator/scene_loader.hpp"
 #include "sadr/orchestrator/sweep_frames.hpp"
 
 namespace sadr::orchestrator {
 namespace fs = std::filesystem;
+
+void write_ensemble_manifest(const fs::path& dir, const Scene& scene, int realizations,
+                             const std::vector<FailedRealization>& failed) {
+  nlohmann::json f = nlohmann::json::array();
+  for (const auto& x : failed) {
+    f.push_back({{"realization", x.realization}, {"exit_code", x.exit_code}, {"reason", x.reason}});
+  }
+  const nlohmann::json j{{"format", "sadr-ensemble"},
+                         {"format_version", 1},
+                         {"scene_path", fs::absolute(scene.source_path).string()},
+                         {"overrides", scene.overrides},
+                         {"scene_hash", scene.source_hash},
+                         {"realizations", realizations},
+                         {"failed", f}};
+  write_file_atomic(dir / "ensemble.json", j.dump(2) + "\n");
+}
+
+int report_failed_realizations(const fs::path& dir, const std::vector<FailedRealization>& failed) {
+  std::fprintf(stderr,
+               "sadr: %zu realizations failed (the ensemble/ files count the others in "
+               "their realizations column):\n  %-11s %-4s %s\n",
+               failed.size(), "realization", "exit", "reason");
+  for (const auto& f : failed) {
+    std::fprintf(stderr, "  %-11d %-4d %s\n", f.realization, f.exit_code,
+                 f.reason.substr(0, f.reason.find('\n')).c_str());
+  }
+  std::fprintf(stderr, "sadr: run or resume them with: sadr resume %s\n", dir.string().c_str());
+  return kExitServiceFailure;
+}
+
+int resume_ensemble(const CliOptions& o, const fs::path& dir) {
+  const nlohmann::json j = nlohmann::json::parse(read_file_bytes(dir / "ensemble.json"));
+  const auto overrides = parse_overrides(j.at("overrides").get<std::vector<std::string>>());
+  const Scene scene = load_scene(j.at("scene_path").get<std::string>(), overrides);
+  if (scene.source_hash != j.at("scene_hash").get<std::string>()) {
+    throw InvalidArgument((dir / "ensemble.json").string() + ": the scene " +
+                          j.at("scene_path").get<std::string>() +
+                          " changed since the ensemble started (hash " + scene.source_hash +
+                          ", was " + j.at("scene_hash").get<std::string>() + ")");
+  }
+  Plan plan = make_plan(scene);
+  const int count = j.at("realizations").get<int>();
+  std::vector<FailedRealization> failed;
+  int executed = 0;
+  for (int r = 0; r < count && !interrupt_requested(); ++r) {
+    char name[32];
+    std::snprintf(name, sizeof name, "realization_%04d", r);
+    const fs::path rd = dir / name;
+    if (fs::exists(rd / "run.json") &&
+        nlohmann::json::parse(read_file_bytes(rd / "run.json")).value("status", "") == "ok") {
+      continue;
+    }
+    ++executed;
+    try {
+      const fs::path cp = rd / "checkpoint" / std::string(kCheckpointManifestName);
+      std::optional<LoadedCheckpoint> resume;
+      if (fs::exists(cp)) resume = load_checkpoint(cp, scene.source_hash);
+      RunOptions base;
+      base.progress = false;
+      run_realization(scene, plan, o, static_cast<std::uint64_t>(r), rd,
+                      resume ? &*resume : nullptr, base);
+      std::fprintf(stderr, "sadr: realization %d %s\n", r, resume ? "resumed and done" : "done");
+    } catch (const std::exception& e) {
+      failed.push_back({r, exit_code_of(e), e.what()});
+      std::fprintf(stderr, "sadr: realization %d failed: %s\n", r, e.what());
+    }
+  }
+  write_ensemble_manifest(dir, scene, count, failed);
+  std::fprintf(stderr, "sadr: resumed %d of %d realizations\n", executed, count);
+  if (!failed.empty()) return report_failed_realizations(dir, failed);
+  if (interrupt_requested()) return kExitInterrupted;
+  CliOptions combine = o;
+  combine.directory = dir.string();
+  return cmd_ensemble(combine);
+}
 
 int cmd_ensemble(const CliOptions& o) {
   const fs::path dir = o.directory;

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "sadr/orchestrator/atomic_file.hpp"
 #include "sweep_executors.hpp"
 
 namespace sadr::orchestrator {
@@ -63,6 +64,7 @@ ExecutorReport run_slurm(SweepManifest& m, const fs::path& dir, std::vector<std:
   const ExecutorSpec& e = m.executor;
   for (int round = 0; round <= m.retries && !todo.empty() && !interrupt_requested(); ++round) {
     const fs::path abs = fs::absolute(dir);
+    ensure_directory(abs / "runs");  // Slurm opens the task logs there before a task starts
     std::string sbatch("sbatch --parsable --job-name=sadr-sweep --chdir=");
     sbatch.append(d)
         .append(" --output=")

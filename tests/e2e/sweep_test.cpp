@@ -288,5 +288,39 @@ TEST(EnsembleCli, BadCellsNaNsAndMissingFramesAreRefusedNamingFileAndRow) {
   if (!HasFailure()) fs::remove_all(d);
 }
 
+TEST(EnsembleCli, AFailedRealizationDoesNotStopTheOthersAndResumeCompletesIt) {
+  const fs::path d = scratch("ensemble-fault");
+  const fs::path scene =
+      write_scene(d, birth_death_scene(8, 400.0, 1.0, 0.4, "[0.2, 0.4]", "[csv]"));
+  const std::string sadr = bin("sadr") + " ";
+  ASSERT_EQ(
+      run(sadr + "run " + scene.string() + " -q -r 3 -o " + (d / "ref").string(), d / "ref.log"), 0)
+      << read_file(d / "ref.log");
+  // Bad input for realization 1: its run.json is a directory.
+  fs::create_directories(d / "e" / "realization_0001" / "run.json");
+  EXPECT_EQ(run(sadr + "run " + scene.string() + " -q -r 3 -j 2 --force -o " + (d / "e").string(),
+                d / "a.log"),
+            3);
+  const std::string log = read_file(d / "a.log");
+  EXPECT_NE(log.find("realization 1 failed: "), std::string::npos) << log;
+  EXPECT_NE(log.find("sadr resume " + (d / "e").string()), std::string::npos) << log;
+  const auto j = nlohmann::json::parse(read_file(d / "e" / "ensemble.json"));
+  ASSERT_EQ(j["failed"].size(), 1u) << j.dump();
+  EXPECT_EQ(j["failed"][0]["realization"], 1);
+  EXPECT_EQ(j["failed"][0]["exit_code"], 5);
+  EXPECT_TRUE(fs::exists(d / "e" / "realization_0002" / "run.json")) << "the others went on";
+  EXPECT_NE(read_file(d / "e" / "ensemble" / "frame_000002.csv").find(",2,"), std::string::npos)
+      << "the ensemble says it used 2 realizations";
+  fs::remove_all(d / "e" / "realization_0001" / "run.json");
+  ASSERT_EQ(run(sadr + "resume " + (d / "e").string() + " -q", d / "b.log"), 0)
+      << read_file(d / "b.log");
+  EXPECT_NE(read_file(d / "b.log").find("resumed 1 of 3 realizations"), std::string::npos)
+      << read_file(d / "b.log");
+  for (const char* f : {"frame_000001.csv", "frame_000002.csv"}) {
+    EXPECT_TRUE(read_file(d / "ref" / "ensemble" / f) == read_file(d / "e" / "ensemble" / f)) << f;
+  }
+  if (!HasFailure()) fs::remove_all(d);
+}
+
 }  // namespace
 }  // namespace sadr::orchestrator
