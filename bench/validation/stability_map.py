@@ -211,7 +211,7 @@ box: {{lower: [0.0], upper: [1.0], periodic: [true]}}
 particles: {{spacing: 0.25, density: 1.0}}
 fluid: {{backend: static, h_over_dx: 1.8}}
 species:
-  - {{name: A, diffusivity: 0.1, initial: [{{count: {count}}}]}}
+  - {{name: A, diffusivity: 0.0, initial: [{{count: {count}}}]}}
 reactions:
   - {{name: decay, equation: "A -> 0", rate: 1.0e-9}}
 time: {{coupling_step: 0.01, end: 1.0e-7}}

@@ -206,7 +206,10 @@ std::vector<double> frame_to_frame_ends(double tau, double end, const std::vecto
 
 TEST(FrameToFrame, OneStepPerOutputTimeWhateverTau) {
   const std::vector<double> out{0.0, 0.2, 0.4, 1.0, 4.0};
-  EXPECT_EQ(frame_to_frame_ends(0.01, 4.0, out, {}), (std::vector<double>{0.2, 0.4, 1.0, 4.0}));
+  // At most kFrameToFrameMaxSteps = 100 coupling steps (1.0 here) per step.
+  EXPECT_EQ(frame_to_frame_ends(0.01, 4.0, out, {}),
+            (std::vector<double>{0.2, 0.4, 1.0, 2.0, 3.0, 4.0}));
+  EXPECT_EQ(frame_to_frame_ends(0.1, 4.0, out, {}), (std::vector<double>{0.2, 0.4, 1.0, 4.0}));
   // tau only sets the snap: an output 1e-12 after t counts as reached.
   EXPECT_EQ(frame_to_frame_ends(0.01, 1.0, {0.0, 1e-12, 0.5, 1.0}, {}),
             (std::vector<double>{0.5, 1.0}));

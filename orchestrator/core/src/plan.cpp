@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "sadr/orchestrator/diagnostics.hpp"
+#include "sadr/orchestrator/splitting.hpp"
 
 namespace sadr::orchestrator {
 
@@ -90,7 +91,8 @@ Plan make_plan(const Scene& scene) {
   if (p.frame_to_frame) {
     p.skipped.push_back("coupling step (" + format_number(scene.time.coupling_step) +
                         "): nothing moves; SSA advances frame to frame (to each output, "
-                        "checkpoint and stop time in one call)");
+                        "checkpoint and stop time in one call, at most " +
+                        format_number(kFrameToFrameMaxSteps) + " coupling steps long)");
   }
   if (!p.ssa_service || !p.fluid_stepping) {
     p.overlap_reason = "only one operator runs";

@@ -90,6 +90,7 @@ std::optional<CouplingStep> next_coupling_step(double t, double tau, double end_
     earlier((std::floor((t + snap) / every) + 1.0) * every);
   }
   earlier(frame_to_frame->stop_at);
+  earlier(t + kFrameToFrameMaxSteps * tau);
   return landing_step(t, end, end_time, output_times);
 }
 

@@ -75,10 +75,16 @@ struct FrameToFrame {
   double stop_at = std::numeric_limits<double>::infinity();  ///< [time]
 };
 
+/// At most this many coupling steps tau per frame-to-frame step: one SSA call
+/// must answer within the client's timeout (--timeout, 120 s), and a run to a
+/// single output time far away would otherwise be one call.
+inline constexpr double kFrameToFrameMaxSteps = 100.0;
+
 /// next_coupling_step() of a frame-to-frame schedule: one step from t to the
-/// first of the next output time, end time, checkpoint time and stop time,
-/// however far away; `tau` only sets time_snap(). Targets within time_snap()
-/// of each other are one target (the output or end time wins).
+/// first of the next output time, end time, checkpoint time, stop time and
+/// t + kFrameToFrameMaxSteps tau; otherwise `tau` only sets time_snap().
+/// Targets within time_snap() of each other are one target (the output or end
+/// time wins).
 /// @param frame_to_frame nullptr: the same as next_coupling_step(t, tau, end_time, output_times)
 std::optional<CouplingStep> next_coupling_step(double t, double tau, double end_time,
                                                std::span<const double> output_times,
