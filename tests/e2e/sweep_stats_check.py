@@ -6,9 +6,11 @@
 
 For every point and frame: A_mean and A_var (ddof = 1) of every species equal
 numpy's mean and var over runs/pPPPP_r*/frames/frame_NNNNNN.csv to 1e-12
-(relative to max(1, |value|)); sem = sqrt(var / R); the 95 % interval is
-mean -+ t(0.975, R - 1) sem (scipy). Prints the largest deviation; exit 1 on a
-mismatch."""
+(relative to max(1, |value|)), and so does sem = sqrt(var / R); the 95 %
+interval mean -+ t(0.975, R - 1) sem is checked to 1e-9 only, because scipy's
+t quantile is itself off by up to ~6e-11 (df = 9: 2.2621571627409915 against
+mpmath's 2.2621571627982055, which Boost.Math gives). Prints the largest
+deviation; exit 1 on a mismatch."""
 import csv
 import json
 import math
@@ -43,13 +45,15 @@ def main():
                 x = np.stack([f[s] for f in frames])  # R x N
                 mean, var = x.mean(axis=0), x.var(axis=0, ddof=1)
                 sem = np.sqrt(var / R)
-                for name, ref in ((s + "_mean", mean), (s + "_var", var), (s + "_sem", sem),
-                                  (s + "_ci95_lo", mean - t * sem),
-                                  (s + "_ci95_hi", mean + t * sem)):
+                for name, ref, tol in ((s + "_mean", mean, 1e-12), (s + "_var", var, 1e-12),
+                                       (s + "_sem", sem, 1e-12),
+                                       (s + "_ci95_lo", mean - t * sem, 1e-9),
+                                       (s + "_ci95_hi", mean + t * sem, 1e-9)):
                     err = np.max(np.abs(a[name] - ref) / np.maximum(1.0, np.abs(ref)))
-                    worst = max(worst, float(err))
+                    if tol == 1e-12:
+                        worst = max(worst, float(err))
                     checked += ref.size
-                    if not err <= 1e-12:
+                    if not err <= tol:
                         print(f"{agg}: {name} differs from numpy by {err:.3g}")
                         return 1
             if not np.all(a["realizations"] == R):
@@ -58,7 +62,8 @@ def main():
     if checked == 0:
         print("nothing checked")
         return 1
-    print(f"{checked} values equal numpy's to {worst:.3g} (relative, tolerance 1e-12)")
+    print(f"{checked} values checked; mean, var, sem equal numpy's to {worst:.3g} "
+          "(relative, tolerance 1e-12)")
     return 0
 
 
