@@ -220,6 +220,17 @@ int cmd_sweep(const CliOptions& o) {
                  failed, m.runs.size(), dir.string().c_str());
     return interrupt_requested() ? kExitInterrupted : kExitServiceFailure;
   }
+  bool refused = false;
+  for (const auto& [point, a] : m.aggregates.items()) {
+    const std::string state = a.value("state", "");
+    if (state != "refused" && state != "failed") continue;
+    refused = true;
+    const std::string note =
+        a.contains("notes") && !a["notes"].empty() ? a["notes"][0].get<std::string>() : "";
+    std::fprintf(stderr, "sadr: point %s not aggregated (%s): %s\n", point.c_str(), state.c_str(),
+                 note.c_str());
+  }
+  if (refused) return kExitInvalidInput;
   std::fprintf(stderr, "sadr: sweep done: %zu runs; aggregates in %s/points, observables in %s\n",
                m.runs.size(), dir.string().c_str(), (dir / "observables.csv").string().c_str());
   return kExitOk;

@@ -256,6 +256,28 @@ TEST(SweepCli, AnInvalidPointIsRefusedBeforeAnythingRuns) {
   if (!HasFailure()) fs::remove_all(d);
 }
 
+TEST(SweepCli, RunsOfDifferentEffectiveScenesAreNotAggregatedTogether) {
+  const fs::path d = scratch("sweep-hash");
+  const fs::path scene =
+      write_scene(d, birth_death_scene(8, 400.0, 1.0, 0.4, "[0.2, 0.4]", "[csv]"));
+  const fs::path sweep = write_sweep(d, "realizations: 2\nretries: 0\n");
+  fs::create_directories(d / "s" / "runs" / "p0000_r0001" / "run.json");  // run 1 fails
+  EXPECT_EQ(run(sweep_cmd(sweep, d / "s"), d / "a.log"), 3) << read_file(d / "a.log");
+  // The base scene is edited before the re-run: run 1 now runs another scene.
+  fs::remove_all(d / "s" / "runs" / "p0000_r0001" / "run.json");
+  std::ofstream(scene, std::ios::app) << "# edited\n";
+  EXPECT_EQ(run(sweep_cmd(sweep, d / "s"), d / "b.log"), 1) << read_file(d / "b.log");
+  EXPECT_NE(read_file(d / "b.log").find("point 0 not aggregated (refused)"), std::string::npos)
+      << read_file(d / "b.log");
+  const auto m = manifest(d / "s");
+  EXPECT_NE(m["runs"][0]["scene_hash"], m["runs"][1]["scene_hash"]);
+  EXPECT_EQ(m["aggregates"]["0"]["state"], "refused") << m["aggregates"].dump();
+  EXPECT_NE(m["aggregates"]["0"]["notes"][0].get<std::string>().find("different effective scenes"),
+            std::string::npos);
+  EXPECT_FALSE(fs::exists(d / "s" / "points" / "p0000" / "frame_000001.csv"));
+  if (!HasFailure()) fs::remove_all(d);
+}
+
 TEST(EnsembleCli, BadCellsNaNsAndMissingFramesAreRefusedNamingFileAndRow) {
   const fs::path d = scratch("ensemble-bad");
   const fs::path scene =
