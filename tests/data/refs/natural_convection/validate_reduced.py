@@ -1,0 +1,65 @@
+#!/usr/bin/python3
+"""Reduced natural-convection validation (ctest -L validation: natural_convection_reduced).
+
+Runs the coarse deterministic scene (tests/data/scenes/natural_convection_ra1e4_coarse.yaml:
+41^2 lattice points in the enclosure, h = 3 dx, Ra = 1e4, SDPD-transported theta) with `sadr run`,
+scores its last frame against the continuum reference with score_run.py, and fails unless
+
+    theta error (||.||_2 / n, continuum reference)   <= --theta-tol
+    v* error   (||.||_2 / n, continuum reference)    <= --vstar-tol
+    |Nu_half / Nu_half_reference - 1|                <= --nu-tol
+    max |rho / rho_0 - 1| over the fluid             <= 0.01 (weak compressibility)
+
+The run is deterministic (no thermal noise, no SSA), so the measured figures are reproducible;
+the tolerances are the figures measured on 2026-12-01 times 1.3 (docs/natural-convection.md).
+
+    /usr/bin/python3 validate_reduced.py --sadr build/ci/bin/sadr
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.abspath(os.path.join(HERE, "..", "..", "..", ".."))
+sys.path.insert(0, HERE)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sadr", required=True)
+    ap.add_argument("--scene", default=os.path.join(ROOT, "tests", "data", "scenes",
+                                                    "natural_convection_ra1e4_coarse.yaml"))
+    ap.add_argument("--theta-tol", type=float, required=True)
+    ap.add_argument("--vstar-tol", type=float, required=True)
+    ap.add_argument("--nu-tol", type=float, required=True)
+    args = ap.parse_args()
+    with tempfile.TemporaryDirectory(prefix="sadr_nc_") as out:
+        cmd = [args.sadr, "run", args.scene, "--fluid-threads", "1", "-o", os.path.join(out, "run")]
+        print(" ".join(cmd), flush=True)
+        subprocess.run(cmd, check=True)
+        frames = sorted(os.listdir(os.path.join(out, "run", "frames")))
+        last = os.path.join(out, "run", "frames", [f for f in frames if f.endswith(".csv")][-1])
+        subprocess.run([sys.executable, os.path.join(HERE, "score_run.py"), last, "--ra", "1e4",
+                              "--h", str(3.0 / 41.0), "--dx", str(1.0 / 41.0),
+                              "--json", os.path.join(out, "score.json")], check=True)
+        with open(os.path.join(out, "score.json")) as f:
+            s = json.load(f)
+    checks = [
+        ("theta error vs continuum", s["theta_err_ref"], args.theta_tol),
+        ("v* error vs continuum", s["vstar_err_ref"], args.vstar_tol),
+        ("|Nu_half / Nu_ref - 1|", abs(s["Nu_half"] / s["Nu_half_reference"] - 1), args.nu_tol),
+        ("max density variation", s["max_density_variation"], 0.01),
+    ]
+    failed = False
+    for name, value, tol in checks:
+        ok = value <= tol
+        failed |= not ok
+        print("%-28s %.4g  (allowed <= %.4g)  %s" % (name, value, tol, "ok" if ok else "FAILED"))
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
