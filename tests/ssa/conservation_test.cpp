@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Pure diffusion conserves molecules and never goes negative; each jump convention
-// reaches the equilibrium it promises (SPEC section 4).
+// reaches the equilibrium it promises (docs/method.md section 4).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Edge weights of the particle diffusion graph (SPEC section 4).
+// Edge weights of the particle diffusion graph (docs/method.md section 4).
 #include "sadr/ssa/diffusion_graph.hpp"
 
 #include <gtest/gtest.h>

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <limits>
 
+#include "sadr/common/mass_action.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/ssa/nsm_solver.hpp"
-#include "sadr/ssa/rate_conversion.hpp"
 #include "ssa_test_support.hpp"
 
 namespace sadr::ssa {
@@ -117,16 +117,35 @@ TEST(SolverInput, BadParticlesNameFieldIndexAndValue) {
   EXPECT_NE(message_of([&] { s.advance(-1.0); }).find("t_end = -1"), std::string::npos);
 }
 
-// The one documented conversion (rate_conversion.hpp).
+// The one documented conversion (common/mass_action.hpp), and the law both services use.
 TEST(RateConversion, TableOfSpecSection4) {
   const double k = 0.3, v = 2.5;
-  EXPECT_DOUBLE_EQ(mass_action_constant(k, 0, v), k * v);
-  EXPECT_DOUBLE_EQ(mass_action_constant(k, 1, v), k);
-  EXPECT_DOUBLE_EQ(mass_action_constant(k, 2, v), k / v);
-  EXPECT_THROW((void)mass_action_constant(k, 3, v), InvalidArgument);
-  EXPECT_DOUBLE_EQ(combinatorial_factor(7, 1), 7.0);
-  EXPECT_DOUBLE_EQ(combinatorial_factor(7, 2), 21.0);
-  EXPECT_DOUBLE_EQ(combinatorial_factor(1, 2), 0.0);
+  EXPECT_DOUBLE_EQ(mass_action::voxel_constant(k, 0, v), k * v);
+  EXPECT_DOUBLE_EQ(mass_action::voxel_constant(k, 1, v), k);
+  EXPECT_DOUBLE_EQ(mass_action::voxel_constant(k, 2, v), k / v);
+  EXPECT_THROW((void)mass_action::voxel_constant(k, 3, v), InvalidArgument);
+  EXPECT_DOUBLE_EQ(mass_action::combinations(7, 1), 7.0);
+  EXPECT_DOUBLE_EQ(mass_action::combinations(7, 2), 21.0);
+  EXPECT_DOUBLE_EQ(mass_action::combinations(1, 2), 0.0);
+}
+
+// The SSA's propensity per volume tends to the deterministic rate of the same
+// law (fluid_service's SpeciesTransport) as X = C V grows: exactly for A + B and
+// for order 0, with relative difference 1/X for A + A (a factor 2 off would fail).
+TEST(RateConversion, StochasticPropensityPerVolumeTendsToTheDeterministicRate) {
+  const double k = 0.3, v = 2.0;
+  const std::int64_t xa = 1000000, xb = 400000;
+  const double ca = static_cast<double>(xa) / v, cb = static_cast<double>(xb) / v;
+  using namespace mass_action;
+  const double ab_det = k * concentration_term(ca, 1, inverse_factorial(1)) *
+                        concentration_term(cb, 1, inverse_factorial(1));
+  const double ab_ssa = voxel_constant(k, 2, v) * combinations(xa, 1) * combinations(xb, 1);
+  EXPECT_DOUBLE_EQ(ab_ssa / v, ab_det);
+  const double aa_det = k * concentration_term(ca, 2, inverse_factorial(2));  // k C^2 / 2
+  const double aa_ssa = voxel_constant(k, 2, v) * combinations(xa, 2);
+  EXPECT_NEAR(aa_ssa / v / aa_det, 1.0 - 1.0 / static_cast<double>(xa), 1e-12);
+  EXPECT_DOUBLE_EQ(voxel_constant(k, 0, v) / v, k);
+  EXPECT_DOUBLE_EQ(inverse_factorial(2), 0.5);
 }
 
 // Propensities in a voxel of volume V = 2: A + B -> C is (k/V) X_A X_B (not k/(2V));

@@ -12,6 +12,7 @@
 #include "sadr/common/status.hpp"
 #include "sadr/ssa/inflow.hpp"
 #include "sadr/ssa/nsm_solver.hpp"
+#include "sadr/ssa/ssa_service.hpp"
 
 namespace sadr::ssa {
 namespace {

@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "sadr/common/mass_action.hpp"
 #include "sadr/common/status.hpp"
 
 namespace sadr::fluid {
@@ -99,9 +100,7 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
     }
     std::map<int, int> net;
     for (const auto& [s, nu] : re.reactants) {
-      double fact = 1;
-      for (int k = 2; k <= nu; ++k) fact *= k;
-      cr.reactants.push_back({s, nu, 1.0 / fact});
+      cr.reactants.push_back({s, nu, mass_action::inverse_factorial(nu)});
       net[s] -= nu;
     }
     for (const auto& [s, nu] : re.products) net[s] += nu;
@@ -124,10 +123,7 @@ double SpeciesTransport::velocity(const CompiledReaction& r, std::size_t i,
                                   const std::vector<std::vector<double>>& c) const {
   double v = r.rate;
   for (const auto& t : r.reactants) {
-    const double x = c[t.species][i];
-    double p = x;
-    for (int k = 1; k < t.nu; ++k) p *= x;
-    v *= p * t.inv_factorial;
+    v *= mass_action::concentration_term(c[t.species][i], t.nu, t.inv_factorial);
   }
   return v;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/common/periodic.hpp"
 
 namespace sadr::ssa::detail {
 
@@ -126,16 +127,16 @@ class CellGrid {
             // (x_i - x_j) - shift, in this order, so that r_ij and r_ji round
             // identically (symmetric D_ij stays exactly symmetric).
             double dx = (x0 - xs[D * m]) - sx;
-            if (kMinImage && mi[0]) dx = wrap(dx, len[0]);
+            if (kMinImage && mi[0]) dx = minimum_image(dx, len[0]);
             double r2 = dx * dx;
             if constexpr (D >= 2) {
               double dy = (x1 - xs[D * m + 1]) - sy;
-              if (kMinImage && mi[1]) dy = wrap(dy, len[1]);
+              if (kMinImage && mi[1]) dy = minimum_image(dy, len[1]);
               r2 += dy * dy;
             }
             if constexpr (D >= 3) {
               double dz = (x2 - xs[D * m + 2]) - sz;
-              if (kMinImage && mi[2]) dz = wrap(dz, len[2]);
+              if (kMinImage && mi[2]) dz = minimum_image(dz, len[2]);
               r2 += dz * dz;
             }
             if (r2 < cut2 && members[m] != i) f(members[m], r2);
@@ -143,12 +144,6 @@ class CellGrid {
         }
       }
     }
-  }
-
-  static double wrap(double dx, double len) {
-    if (dx > 0.5 * len) return dx - len;
-    if (dx < -0.5 * len) return dx + len;
-    return dx;
   }
 
   int d_ = 3;

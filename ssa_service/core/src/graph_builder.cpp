@@ -10,6 +10,7 @@
 #include "graph_build_detail.hpp"
 #include "graph_filter.hpp"
 #include "graph_search.hpp"
+#include "sadr/common/periodic.hpp"
 
 #ifdef SADR_HAVE_OPENMP
 #include <omp.h>
@@ -18,22 +19,6 @@
 namespace sadr::ssa {
 
 namespace {
-
-/// Wraps a coordinate of a periodic axis into [lo, hi) (the formula of neighbor_list.cpp).
-inline double wrap_into(double v, double lo, double hi) {
-  const double len = hi - lo;
-  v = lo + (v - lo) - len * std::floor((v - lo) / len);
-  return v >= hi ? lo : v;
-}
-
-/// Minimum-image difference on a periodic axis of length len (coordinates wrapped,
-/// |true difference| < len / 2). Odd in dx bit for bit, so r_ij == r_ji exactly
-/// (filter() uses a branch-free form with the same results).
-inline double min_image(double dx, double len, double half) {
-  if (dx > half) return dx - len;
-  if (dx < -half) return dx + len;
-  return dx;
-}
 
 inline int omp_thread_id() {
 #ifdef SADR_HAVE_OPENMP
@@ -134,7 +119,7 @@ bool GraphBuilder::wrap_and_check(const Model& model, const ParticleState& p,
     double s2 = 0;
     for (int a = 0; a < d; ++a) {
       double dx = xw_[d * i + a] - xref_[d * i + a];
-      if (box.periodic[a]) dx = min_image(dx, box.length(a), 0.5 * box.length(a));
+      if (box.periodic[a]) dx = minimum_image(dx, box.length(a));
       s2 += dx * dx;
     }
     if (!(s2 < limit2)) return true;

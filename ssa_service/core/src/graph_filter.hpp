@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file graph_filter.hpp
 /// The per-row part of GraphBuilder's rebuild: candidate rows -> edges with r < h
-/// and their weights D_ij (SPEC section 4), plus the per-row candidate search.
+/// and their weights D_ij (docs/method.md section 4), plus the per-row candidate search.
 /// Rows are independent, so GraphBuilder runs these on row ranges in parallel;
 /// the results do not depend on how the rows are split.
 ///

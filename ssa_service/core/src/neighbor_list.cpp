@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "cell_grid.hpp"
+#include "sadr/common/periodic.hpp"
 
 namespace sadr::ssa {
 
@@ -19,11 +20,7 @@ std::vector<double> wrapped_coordinates(const Box& box, std::span<const double> 
   for (std::size_t i = 0; i < n; ++i) {
     for (int a = 0; a < d; ++a) {
       double v = positions[3 * i + a];
-      if (box.periodic[a]) {
-        const double len = box.length(a);
-        v = box.lo[a] + (v - box.lo[a]) - len * std::floor((v - box.lo[a]) / len);
-        if (v >= box.hi[a]) v = box.lo[a];  // round-off at the upper edge
-      }
+      if (box.periodic[a]) v = wrap_into(v, box.lo[a], box.hi[a]);
       x[d * i + a] = v;
     }
   }
@@ -35,14 +32,7 @@ inline double distance2(const Box& box, int d, const double* p, const double* q)
   double r2 = 0;
   for (int a = 0; a < d; ++a) {
     double dx = p[a] - q[a];
-    if (box.periodic[a]) {
-      const double len = box.hi[a] - box.lo[a];
-      if (dx > 0.5 * len) {
-        dx -= len;
-      } else if (dx < -0.5 * len) {
-        dx += len;
-      }
-    }
+    if (box.periodic[a]) dx = minimum_image(dx, box.hi[a] - box.lo[a]);
     r2 += dx * dx;
   }
   return r2;
@@ -86,11 +76,7 @@ void CellGrid::build(const Box& box, std::span<const double> positions, double c
   for (std::size_t i = 0; i < n; ++i) {
     for (int a = 0; a < d; ++a) {
       double v = positions[3 * i + a];
-      if (box.periodic[a]) {
-        const double len = box.length(a);
-        v = box.lo[a] + (v - box.lo[a]) - len * std::floor((v - box.lo[a]) / len);
-        if (v >= box.hi[a]) v = box.lo[a];  // round-off at the upper edge
-      }
+      if (box.periodic[a]) v = wrap_into(v, box.lo[a], box.hi[a]);
       x_[d * i + a] = v;
     }
   }

@@ -51,7 +51,8 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
                                             : std::find(rx.kinds.begin(), rx.kinds.end(),
                                                         graph.kind[i]) != rx.kinds.end();
       if (!kind_ok || !in_region[i]) continue;
-      t.c_[i * nr + r] = mass_action_constant(rx.rate, t.reactions_[r].order, graph.volume[i]);
+      t.c_[i * nr + r] =
+          mass_action::voxel_constant(rx.rate, t.reactions_[r].order, graph.volume[i]);
     }
   }
   // Neumann: the first layer of non-wall particles, i.e. those with a wall

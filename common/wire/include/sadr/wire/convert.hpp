@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sadr/common/inflow_box.hpp"
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/common/v1/model.pb.h"
@@ -26,23 +27,9 @@ void to_proto(const Box& in, common::v1::Box& out);
 /// Throws InvalidArgument (prefixing `where`, e.g. "init.model.box") on bad input.
 Box from_proto(const common::v1::Box& in, std::string_view where);
 
-/// An inflow buffer's box and value (sadr.common.v1.InflowBuffer); the species
-/// is resolved by the service that applies it.
-struct InflowBox {
-  std::string species;
-  std::array<double, 3> lower{};  ///< [length] (+-inf allowed; unused axes unbounded)
-  std::array<double, 3> upper{};  ///< [length]
-  double concentration = 0.0;     ///< >= 0 [molecules/length^d]
-  /// Whether the position x (3 values) lies in the box.
-  [[nodiscard]] bool contains(const double* x) const {
-    for (int a = 0; a < 3; ++a) {
-      if (!(x[a] >= lower[a] && x[a] <= upper[a])) return false;
-    }
-    return true;
-  }
-};
-/// Checks one bound per axis < dimension, lower <= upper and a finite
-/// concentration >= 0; errors name `where` (e.g. "init.model.inflows[0]").
+/// An inflow buffer (sadr.common.v1.InflowBuffer) as the cores' InflowBox; the
+/// species is resolved by the service that applies it. Checks one bound per axis < dimension, lower
+/// <= upper and a finite concentration >= 0; errors name `where` (e.g. "init.model.inflows[0]").
 InflowBox from_proto(const common::v1::InflowBuffer& in, int dimension, std::string_view where);
 
 /// Copies the arrays; velocities only if `with_velocities` and present.

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/common/periodic.hpp"
 
 namespace sadr::fluid {
 
@@ -45,14 +46,10 @@ class PeriodicBox {
     return r2;
   }
   /// Replaces d (= x_i - x_j) by its minimum image on periodic axes (|d_a| <= L_a/2).
+  /// The rule is sadr::minimum_image (common/periodic.hpp), the SSA's too.
   void minimum_image(double* d) const {
     for (int a = 0; a < 3; ++a) {
-      if (!per_[a]) continue;
-      if (d[a] > half_[a]) {
-        d[a] -= len_[a];
-      } else if (d[a] < -half_[a]) {
-        d[a] += len_[a];
-      }
+      if (per_[a]) d[a] = sadr::minimum_image(d[a], len_[a]);
     }
   }
   /// Wraps a position into [lo, hi) on periodic axes (one period at most per call is enough

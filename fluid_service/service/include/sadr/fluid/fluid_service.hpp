@@ -62,7 +62,7 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
   wire::SharedGeometry geometry_shm_;  ///< the segment Advance.geometry_shm names (mapped once)
   struct Inflow {
     int species = 0;  ///< deterministic species index
-    wire::InflowBox box;
+    InflowBox box;
   };
   std::vector<Inflow> inflows_;        ///< applied after Init and after every Advance
   std::vector<double> inflow_values_;  ///< apply_inflows() and set_counts() scratch

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file coupled_run.hpp
 /// One realization of a scene: the Lie/Strang coupling loop between
-/// fluid_service and ssa_service (SPEC section 1), with frames at exactly the
+/// fluid_service and ssa_service (docs/method.md section 1), with frames at exactly the
 /// requested times, periodic and on-signal checkpoints, a progress display,
 /// and resume from a checkpoint. The services are already running; this
 /// code only needs their endpoints.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file diffusion_graph.hpp
-/// The particle diffusion graph of SPEC section 4 (Tartakovsky / drawert2019
+/// The particle diffusion graph of docs/method.md section 4 (Tartakovsky / drawert2019
 /// eq 28), in compressed-sparse-row form.
 ///
 /// Representation: our own CSR arrays rather than

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 /// \file model.hpp
 /// The reaction-diffusion model of ssa_service: species, mass-action reactions,
-/// boundary conditions and the diffusion-graph parameters (SPEC section 4).
+/// boundary conditions and the diffusion-graph parameters (docs/method.md section 4).
 ///
 /// Units: one consistent system chosen by the scene. Lengths [L], time [T],
 /// copy numbers are dimensionless; a voxel volume V_i = m_i / rho_i has units
 /// [L^d] in d dimensions. Rate constants are given in concentration units and
-/// converted per voxel by sadr::ssa::mass_action_constant() (rate_conversion.hpp),
+/// converted per voxel by sadr::mass_action::voxel_constant() (common/mass_action.hpp),
 /// the one place where that scaling lives.
 #pragma once
 
@@ -20,11 +20,11 @@
 
 namespace sadr::ssa {
 
-/// How the per-edge weight D_ij of the particle graph is formed (SPEC section 4).
+/// How the per-edge weight D_ij of the particle graph is formed (docs/method.md section 4).
 ///
 /// kVolume is the DEFAULT: its pure-diffusion equilibrium is a uniform
 /// concentration (d_ij V_i = d_ji V_j), which is what the deterministic SPH
-/// concentration equation (SPEC eq 17) relaxes to on non-uniform particles
+/// concentration equation (docs/method.md eq (17)) relaxes to on non-uniform particles
 /// (weakly compressible fluid, wall particles of another mass). kSymmetric
 /// (drawert2019 eq 28, SpatialPy) relaxes to equal counts per voxel instead;
 /// both coincide on uniform particles.
@@ -48,7 +48,7 @@ struct Reaction {
   std::vector<std::pair<int, int>> products;   ///< (species index, stoichiometry >= 1)
   /// Rate constant in concentration units: order 0 [conc/T], order 1 [1/T],
   /// order 2 [1/(conc T)], conc = molecules/L^d. For A + A the convention is
-  /// dC_A/dt = -k C_A^2 (see rate_conversion.hpp).
+  /// dC_A/dt = -k C_A^2 (see common/mass_action.hpp).
   double rate = 0;
   std::vector<ParticleKind> kinds;    ///< particle kinds where it may fire; empty = fluid only
   std::vector<std::uint32_t> voxels;  ///< optional restriction to particle indices; empty = all

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file nsm_solver.hpp
 /// Exact Next Subvolume Method (Elf & Ehrenberg 2004) on the particle
-/// diffusion graph (SPEC section 4).
+/// diffusion graph (docs/method.md section 4).
 ///
 /// Per voxel i the total rate a_i = sum_r a_ir + sum_s X_si kappa_s sum_j D_ij is
 /// cached; the next event time of every voxel sits in a priority queue.

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file reaction_table.hpp
 /// Reactions compiled for the event loop: per-voxel stochastic rate constants
-/// (from mass_action_constant(), the one conversion point), kind/region
+/// (from mass_action::voxel_constant(), common/mass_action.hpp), kind/region
 /// restrictions folded in, and Neumann sources appended as zeroth-order
 /// reactions in the first fluid layer next to the walls.
 #pragma once
@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
+#include "sadr/common/mass_action.hpp"
 #include "sadr/ssa/diffusion_graph.hpp"
 #include "sadr/ssa/model.hpp"
 #include "sadr/ssa/prefetch.hpp"
-#include "sadr/ssa/rate_conversion.hpp"
 
 namespace sadr::ssa {
 
@@ -51,7 +51,7 @@ class ReactionTable {
     const CompiledReaction& rx = reactions_[r];
     double a = constant(i, r);
     for (int k = 0; k < rx.n_reactants; ++k) {
-      a *= combinatorial_factor(counts[rx.species[k] * n_voxels + i], rx.nu[k]);
+      a *= mass_action::combinations(counts[rx.species[k] * n_voxels + i], rx.nu[k]);
     }
     return a;
   }

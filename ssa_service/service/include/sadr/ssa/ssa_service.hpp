@@ -28,6 +28,11 @@ class NsmSolver;
 /// Converts the wire model to the core model. Only species with
 /// stochastic = true are kept (in message order); `species_names` receives
 /// them. Throws InvalidArgument naming the field (e.g. "init.model.reactions[2]").
+/// Converts and validates the model's inflows (throws InvalidArgument naming
+/// "init.model.inflows[k].<field>").
+std::vector<InflowBuffer> inflows_from_proto(const v1::SsaModel& model, int dimension,
+                                             const std::vector<std::string>& species_names);
+
 Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
                        std::vector<std::string>& species_names);
 

@@ -4,32 +4,9 @@
 #include <cmath>
 #include <cstdint>
 
-#include "sadr/common/status.hpp"
 #include "sadr/ssa/nsm_solver.hpp"
 
 namespace sadr::ssa {
-
-std::vector<InflowBuffer> inflows_from_proto(const v1::SsaModel& model, int dimension,
-                                             const std::vector<std::string>& species_names) {
-  std::vector<InflowBuffer> out;
-  for (int k = 0; k < model.inflows_size(); ++k) {
-    const auto& in = model.inflows(k);
-    const std::string where = "init.model.inflows[" + std::to_string(k) + "]";
-    InflowBuffer b;
-    b.species = -1;
-    for (std::size_t s = 0; s < species_names.size(); ++s) {
-      if (species_names[s] == in.species()) b.species = static_cast<int>(s);
-    }
-    if (b.species < 0) {
-      throw InvalidArgument(
-          where + ".species = '" + in.species() + "' is not a stochastic species of the model",
-          {{"field", where + ".species"}, {"value", in.species()}});
-    }
-    b.box = wire::from_proto(in, dimension, where);
-    out.push_back(b);
-  }
-  return out;
-}
 
 bool apply_inflows(NsmSolver& solver, std::span<const InflowBuffer> inflows) {
   if (inflows.empty()) return false;

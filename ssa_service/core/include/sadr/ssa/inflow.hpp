@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file inflow.hpp
-/// Inflow buffers (sadr.common.v1.InflowBuffer): boxes in which the copy number
+/// Inflow buffers (sadr::InflowBox, common/inflow_box.hpp): boxes in which the copy number
 /// of a species is re-imposed as round(c V_i) on the particles currently
 /// inside, at Init and at the start of every Advance. With a periodic flow
 /// this turns a slab into an inlet at a fixed concentration, and particles
@@ -13,23 +13,17 @@
 #include <string>
 #include <vector>
 
+#include "sadr/common/inflow_box.hpp"
 #include "sadr/common/particle_state.hpp"
-#include "sadr/ssa/v1/ssa_service.pb.h"
-#include "sadr/wire/convert.hpp"
 
 namespace sadr::ssa {
 
 class NsmSolver;
 
 struct InflowBuffer {
-  int species = 0;      ///< index among the stochastic species
-  wire::InflowBox box;  ///< where and which concentration
+  int species = 0;  ///< index among the stochastic species
+  InflowBox box;    ///< where and which concentration
 };
-
-/// Converts and validates the model's inflows (throws InvalidArgument naming
-/// "init.model.inflows[k].<field>").
-std::vector<InflowBuffer> inflows_from_proto(const v1::SsaModel& model, int dimension,
-                                             const std::vector<std::string>& species_names);
 
 /// Re-imposes every buffer on the particles the solver's graph was built from.
 /// @return true if some count changed (the solver's queue was rebuilt).
