@@ -106,7 +106,7 @@ void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
   for (auto& c : conc) {
     if (c.empty()) c.assign(particles.size(), 0.0);
   }
-  std::vector<Inflow> inflows;
+  std::vector<InflowBuffer> inflows;
   for (int k = 0; k < req.model().inflows_size(); ++k) {
     const std::string where = "init.model.inflows[" + std::to_string(k) + "]";
     const auto& in = req.model().inflows(k);
@@ -182,21 +182,7 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
 }
 
 void FluidServiceHandler::apply_inflows() {
-  if (inflows_.empty()) return;
-  FluidBackend& b = backend();
-  b.read_state(scratch_);
-  for (const Inflow& in : inflows_) {
-    std::vector<double>& c = inflow_values_;  // buffer reused: no allocation per step
-    c = b.concentrations(in.species);
-    bool changed = false;
-    for (std::size_t i = 0; i < scratch_.size(); ++i) {
-      if (c[i] != in.box.concentration && in.box.contains(&scratch_.positions[3 * i])) {
-        c[i] = in.box.concentration;
-        changed = true;
-      }
-    }
-    if (changed) b.set_concentrations(in.species, c);
-  }
+  if (!inflows_.empty()) fluid::apply_inflows(backend(), inflows_, scratch_, inflow_values_);
 }
 
 void FluidServiceHandler::get_state(const v1::GetStateRequest& req, v1::GetStateReply& rep) const {

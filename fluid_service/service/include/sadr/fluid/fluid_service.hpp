@@ -14,6 +14,7 @@
 
 #include "sadr/fluid/backend_registry.hpp"
 #include "sadr/fluid/fluid_model.hpp"
+#include "sadr/fluid/inflow.hpp"
 #include "sadr/fluid/v1/fluid_service.pb.h"
 #include "sadr/wire/convert.hpp"
 #include "sadr/wire/shared_geometry.hpp"
@@ -60,11 +61,7 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
   v1::AdvanceReply last_reply_;
   ParticleState scratch_;              ///< state read for Advance(return_state); buffers reused
   wire::SharedGeometry geometry_shm_;  ///< the segment Advance.geometry_shm names (mapped once)
-  struct Inflow {
-    int species = 0;  ///< deterministic species index
-    InflowBox box;
-  };
-  std::vector<Inflow> inflows_;        ///< applied after Init and after every Advance
+  std::vector<InflowBuffer> inflows_;  ///< applied after Init and after every Advance
   std::vector<double> inflow_values_;  ///< apply_inflows() and set_counts() scratch
 };
 
