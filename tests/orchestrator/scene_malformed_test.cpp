@@ -168,7 +168,20 @@ const std::vector<MalformedCase>& cases() {
        "    diffusivity: 0.1\n",
        "    diffusivity: 0.1\n    initial: [{count: 2.5}]\n",
        {"species[0].initial[0].count: 2.5 is not allowed for the stochastic species 'A'; "
-        "allowed: a whole number >= 0"}},
+        "allowed: a whole number 0 <= n <= 2^53 = 9007199254740992"}},
+      // 1e19 used to overflow on its way to the SSA's 64-bit counts and arrive as -2^63
+      // (found by bench/validation/stability_map.py).
+      {"copy_number_beyond_2_53",
+       "    diffusivity: 0.1\n",
+       "    diffusivity: 0.1\n    initial: [{count: 1.0e19}]\n",
+       {"species[0].initial[0].count: 1e+19 is not allowed for the stochastic species 'A'; "
+        "allowed: a whole number 0 <= n <= 2^53"}},
+      {"copy_number_from_concentration_beyond_2_53",
+       "    diffusivity: 0.1\n",
+       "    diffusivity: 0.1\n    initial: [{concentration: 1.0e300}]\n",
+       {"species[0].initial[0].concentration: 1e+300 gives",
+        "of the stochastic species 'A'; "
+        "allowed: a copy number C V <= 2^53"}},
       {"sdpd_needs_sound_speed",
        "  backend: static\n",
        "  backend: sdpd\n",

@@ -25,6 +25,12 @@ constexpr std::array<std::string_view, 8> kReactionKeys{
     "name", "equation", "reactants", "products", "rate", "reverse_rate", "regions", "kinds"};
 constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
 
+/// The largest stochastic copy number a scene accepts: 2^53, the largest whole number
+/// below which every whole number is exact in the scene's numbers (doubles). Above it,
+/// the conversion to the SSA's 64-bit counts overflowed (1e19 arrived as -2^63).
+constexpr double kMaxCopyNumber = 9007199254740992.0;
+const std::string kCopyNumberRange = "a whole number 0 <= n <= 2^53 = 9007199254740992";
+
 /// Copy number for a concentration in particle i: nearest whole number of C V_i.
 double to_count(const ParticleState& p, std::size_t i, double concentration) {
   return std::round(concentration * p.volume(i));
@@ -64,9 +70,10 @@ bool read_initial_column(SceneContext& ctx, const Field& f, Species& sp, const R
     std::string bad;
     if (!(v >= 0.0)) {
       bad = "is out of range; allowed: >= 0";
-    } else if (is_count && sp.stochastic && v != std::floor(v)) {
+    } else if (sp.stochastic && ((is_count && v != std::floor(v)) ||
+                                 (is_count ? v : to_count(p, i, v)) > kMaxCopyNumber)) {
       bad = "is not allowed for the stochastic species '" + sp.name +
-            "'; allowed: a whole number >= 0";
+            "'; allowed: " + (is_count ? kCopyNumberRange : "a copy number C V <= 2^53");
     }
     if (!bad.empty()) {
       if (++reported <= 5) {
@@ -119,13 +126,26 @@ void read_initial(SceneContext& ctx, const Field& sp_field, Species& sp) {
     const auto count = r.number(f, "count", Bound::kNonNegative, "molecules per particle", false);
     const auto conc =
         r.number(f, "concentration", Bound::kNonNegative, "molecules/length^d", false);
-    if (count && sp.stochastic && *count != std::floor(*count)) {
+    if (count && sp.stochastic && (*count != std::floor(*count) || *count > kMaxCopyNumber)) {
       r.error(YamlReader::child(f, "count"), format_number(*count) +
                                                  " is not allowed for the stochastic species '" +
-                                                 sp.name + "'; allowed: a whole number >= 0");
+                                                 sp.name + "'; allowed: " + kCopyNumberRange);
       continue;
     }
     if (!rg || !ctx.particles_ok || !(count || conc)) continue;
+    if (conc && sp.stochastic) {
+      const auto too_many =
+          std::find_if(rg->particles.begin(), rg->particles.end(),
+                       [&](std::uint32_t i) { return to_count(p, i, *conc) > kMaxCopyNumber; });
+      if (too_many != rg->particles.end()) {
+        r.error(YamlReader::child(f, "concentration"),
+                format_number(*conc) + " gives " + format_number(to_count(p, *too_many, *conc)) +
+                    " molecules in particle " + std::to_string(*too_many) +
+                    " of the stochastic species '" + sp.name +
+                    "'; allowed: a copy number C V <= 2^53 = 9007199254740992");
+        continue;
+      }
+    }
     for (const std::uint32_t i : rg->particles) {
       if (count) {
         sp.initial[i] = sp.stochastic ? *count : *count / p.volume(i);
