@@ -7,7 +7,7 @@ profiles (moukalled_digitised_profiles.csv), with drawert2019's metric ||f - f_r
         [--average FRAME2.csv ...] [--json OUT.json]
 
 FRAME.csv is a CSV frame written by `sadr run` (columns time,id,kind,x,y,z,vx,vy,vz,density,mass,
-theta). Several frames (the positional one and --average) are averaged after interpolation.
+theta); for the stochastic variant give --molecules N (theta = copy number / N). Several frames (the positional one and --average) are averaged after interpolation.
 
 * Centre-line profiles theta(x), v*(x) = v_y sqrt(Ra/Sc) at y = 0.5: Shepard (normalised) Lucy-kernel
   interpolation over all particles (walls hold theta at its wall value and v = 0), at the continuum
@@ -82,6 +82,8 @@ def main():
     ap.add_argument("--ra", type=float, required=True)
     ap.add_argument("--h", type=float, default=3.0 / 81.0, help="smoothing length (default 3/81)")
     ap.add_argument("--dx", type=float, default=1.0 / 81.0)
+    ap.add_argument("--molecules", type=float, default=0.0,
+                    help="stochastic variant: molecules per particle at theta = 1 (theta = count / N)")
     ap.add_argument("--json")
     args = ap.parse_args()
     ra = int(round(args.ra))
@@ -104,6 +106,8 @@ def main():
     drho = 0.0
     for path in frames:
         fr = read_frame(path)
+        if args.molecules > 0:
+            fr["theta"] = fr["theta"] / args.molecules
         fluid = fr["kind"] == 0
         drho = max(drho, float(np.max(np.abs(fr["density"][fluid] - 1.0))))
         ip = Interpolator(fr, args.h)
