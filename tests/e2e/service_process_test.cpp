@@ -231,6 +231,57 @@ TEST_P(ServiceE2E, FluidServiceStaticBackendOverTheWire) {
   }
 }
 
+// Back-transfer: copy numbers ride on the fluid's Advance, and the service sets
+// C_i = X_i / V_i with its own volumes V_i = m_i / rho_i before stepping.
+TEST_P(ServiceE2E, FluidSetsBackTransferredCountsOverItsOwnVolumes) {
+  ServiceProcess proc(bin("fluid_service"), endpoint_args(GetParam(), "btr"), "fluid_service");
+  FluidClient fluid(proc.endpoint(), 20s);
+  fluid::v1::InitRequest init;
+  ParticleState p;
+  p.dimension = 1;
+  const int n = 8;
+  p.resize(n);
+  for (int i = 0; i < n; ++i) {
+    p.positions[3 * static_cast<std::size_t>(i)] = (i + 0.5) / n;
+    p.masses[static_cast<std::size_t>(i)] = (1.0 + 0.1 * i) / n;  // unequal volumes
+  }
+  wire::to_proto(p, *init.mutable_particles());
+  auto* m = init.mutable_model();
+  m->set_backend("static");
+  Box box;
+  box.dimension = 1;
+  box.periodic = {true, false, false};
+  wire::to_proto(box, *m->mutable_box());
+  m->set_smoothing_length(3.0 / n);
+  m->set_reference_density(1.0);
+  auto* sp = m->add_species();
+  sp->set_name("B");
+  sp->set_stochastic(true);
+  fluid.init(init);
+  fluid.set_run_id("btr");
+  SpeciesCounts counts;
+  counts.names = {"B"};
+  counts.values = {{0, 1, 2, 3, 5, 8, 13, 21}};
+  fluid.advance(0, 0.1, false, counts);
+  const FluidFrame f = fluid.frame({"B"});
+  ASSERT_EQ(f.concentrations.size(), 1u);
+  const auto& c = f.concentrations[0].second;
+  ASSERT_EQ(c.size(), static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    EXPECT_EQ(c[i], static_cast<double>(counts.values[0][i]) / f.particles.volume(i)) << i;
+  }
+  EXPECT_NE(f.particles.volume(0), f.particles.volume(7));
+  counts.values[0].pop_back();
+  try {
+    fluid.advance(1, 0.1, false, counts);
+    FAIL() << "a count per particle is required";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("advance.counts.species[0] has 7 counts, expected 8"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_P(ServiceE2E, SigtermStopsAServiceCleanly) {
   ServiceProcess proc(bin("ssa_service"), endpoint_args(GetParam(), "term"), "ssa_service");
   SsaClient ssa(proc.endpoint(), 20s);
