@@ -2,6 +2,8 @@
 // Unit: the registry, model validation and bad-input / stability / blow-up errors.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
 #include <string>
 
 #include "fluid_test_scenes.hpp"
@@ -144,9 +146,66 @@ TEST(Stability, BlowUpIsDiagnosed) {
   } catch (const NumericalFailure& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("particle id"), std::string::npos) << msg;
-    bool has_step = false;
-    for (const auto& [k, v] : e.details()) has_step = has_step || k == "step";
-    EXPECT_TRUE(has_step);
+    // The fluid core's report: step, sub-step, particle id, field, its value and the limit.
+    std::map<std::string, std::string> d(e.details().begin(), e.details().end());
+    for (const char* k : {"step", "substep", "particle_id", "field", "value", "limit"})
+      EXPECT_TRUE(d.contains(k)) << k << " missing in: " << msg;
+    EXPECT_NE(msg.find(d["field"] + " = " + d["value"] + " (" + d["limit"] + ")"),
+              std::string::npos)
+        << msg;
+  }
+}
+
+// The blob header is the core's: another backend's blob, a foreign blob and an unknown header
+// format are refused by name; a state blob starts with the format-1 header.
+TEST(BackendSeam, BlobHeaderNamesTheBackend) {
+  ParticleState p;
+  FluidModel m = small_model(p);
+  m.species.push_back({"A", 0.01, true, {}, {}});
+  auto sdpd = builtin().create("sdpd");
+  auto st = builtin().create("static");
+  sdpd->initialize(m, p, {});
+  st->initialize(m, p, {});
+  const std::string blob = sdpd->save();
+  EXPECT_EQ(blob.substr(8, 16), "sadr.fluid.state");
+  try {
+    st->restore(blob);
+    FAIL() << "expected InvalidArgument";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("written by backend 'sdpd', not 'static'"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(st->restore(std::string(40, 'x')), InvalidArgument);
+  std::string bad = st->save();
+  bad[24] = 7;  // header format 7
+  try {
+    st->restore(bad);
+    FAIL() << "expected InvalidArgument";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("header format 7"), std::string::npos) << e.what();
+  }
+  st->restore(st->save());  // (and the refusals left it usable)
+}
+
+// Initial-state checks are the core's, the same for every backend: a non-finite initial
+// concentration is refused by static and tdpd as by sdpd, naming species, particle and value.
+TEST(BackendSeam, EveryBackendRefusesANonFiniteConcentration) {
+  ParticleState p;
+  FluidModel m = small_model(p);
+  m.species.push_back({"A", 0.01, true, {}, {}});
+  std::vector<std::vector<double>> c{std::vector<double>(p.size(), 1.0)};
+  c[0][5] = std::nan("");
+  for (const char* name : {"sdpd", "static", "tdpd"}) {
+    auto b = builtin().create(name);
+    try {
+      b->initialize(m, p, c);
+      FAIL() << name << ": expected InvalidArgument";
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string(name) + ": concentrations[0][5] = nan"),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
 

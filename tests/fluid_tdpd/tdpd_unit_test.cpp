@@ -4,6 +4,8 @@
 /// restart blob checks and registry wiring.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <cmath>
 #include <numeric>
 
@@ -184,8 +186,16 @@ TEST(TdpdUnit, BlowUpNamesStepParticleQuantityAndValue) {
   } catch (const NumericalFailure& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("step 3"), std::string::npos) << m;
-    EXPECT_NE(m.find("particle 1"), std::string::npos) << m;
-    EXPECT_NE(m.find("position[0]"), std::string::npos) << m;
+    EXPECT_NE(m.find("particle id 1 "), std::string::npos) << m;
+    EXPECT_NE(m.find("position[0] = "), std::string::npos) << m;
+    // The fluid core's report (backend_base.hpp): every field, the value and the limit broken.
+    std::map<std::string, std::string> d(e.details().begin(), e.details().end());
+    EXPECT_EQ(d["step"], "3");
+    EXPECT_EQ(d["substep"], "0");
+    EXPECT_EQ(d["particle_id"], "1");
+    EXPECT_EQ(d["field"], "position[0]");
+    EXPECT_GT(std::stod(d["value"]), p.model.box.hi[0]) << d["value"];
+    EXPECT_NE(d["limit"].find("left the box"), std::string::npos) << d["limit"];
   }
 }
 

@@ -12,37 +12,8 @@
 namespace sadr::fluid {
 
 namespace {
-constexpr std::uint64_t kMagic = 0x3144504453524441ULL;  // "ADRSSDPD1"-ish tag
-constexpr std::uint32_t kBlobVersion = 2;                // 2: + positions of the last list build
-constexpr std::uint32_t kBlobVersionOpen = 3;  // 3: + kinds, conveyor flags, inlet holes (open)
-
-void check_initial(const FluidModel& model, const ParticleState& s,
-                   const std::vector<std::vector<double>>& c) {
-  model.validate();
-  s.validate();
-  if (s.dimension != model.box.dimension) {
-    throw InvalidArgument("particle state dimension " + std::to_string(s.dimension) +
-                          " differs from box.dimension " + std::to_string(model.box.dimension));
-  }
-  if (s.size() == 0) throw InvalidArgument("particle state is empty");
-  if (s.size() > 0xFFFFFFF0ULL) throw InvalidArgument("too many particles (max 2^32 - 16)");
-  if (!c.empty() && c.size() != model.species.size()) {
-    throw InvalidArgument("concentrations has " + std::to_string(c.size()) +
-                          " species, model has " + std::to_string(model.species.size()));
-  }
-  for (std::size_t k = 0; k < c.size(); ++k) {
-    if (c[k].size() != s.size()) {
-      throw InvalidArgument("concentrations[" + std::to_string(k) + "] has " +
-                            std::to_string(c[k].size()) + " entries, expected " +
-                            std::to_string(s.size()));
-    }
-    for (std::size_t i = 0; i < c[k].size(); ++i) {
-      if (!std::isfinite(c[k][i])) {
-        throw InvalidArgument("concentrations[" + std::to_string(k) + "][" + std::to_string(i) +
-                              "] = " + format_value(c[k][i]) + " (must be finite)");
-      }
-    }
-  }
+/// What only sdpd asks of an initial state (validate_initial_state() checked the rest).
+void check_initial(const FluidModel& model, const ParticleState& s) {
   const PeriodicBox pb(model.box);
   for (std::size_t i = 0; i < s.size(); ++i) {
     const ParticleKind k = s.kind(i);
@@ -72,14 +43,9 @@ void check_initial(const FluidModel& model, const ParticleState& s,
 }
 }  // namespace
 
-void SdpdBackend::require_initialized(const char* what) const {
-  if (!initialized_)
-    throw FailedPrecondition(std::string("sdpd: ") + what + " before initialize()");
-}
-
-void SdpdBackend::initialize(const FluidModel& model, const ParticleState& initial,
-                             const std::vector<std::vector<double>>& concentrations) {
-  check_initial(model, initial, concentrations);
+void SdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
+                        const std::vector<std::vector<double>>& concentrations) {
+  check_initial(model, initial);
   if (!model.backend_parameters.empty()) {
     throw InvalidArgument("sdpd: unknown parameter '" + model.backend_parameters.begin()->first +
                           "' (this backend takes none beyond density_diffusion, diffusion_eps, "
@@ -154,7 +120,6 @@ void SdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   if (open_) apply_open_boundary(0.0);  // (reaction sites follow the kinds it sets)
   time_ = 0;
   prepared_ = false;
-  initialized_ = true;
 }
 
 void SdpdBackend::ensure_neighbors(const std::vector<double>& x) {
@@ -237,12 +202,7 @@ StabilityLimits SdpdBackend::current_limits() {
   return limits(y_, r0_);
 }
 
-StepReport SdpdBackend::advance(std::uint64_t step_index, double time_step) {
-  require_initialized("advance");
-  if (!(std::isfinite(time_step) && time_step > 0)) {
-    throw InvalidArgument("time_step = " + format_value(time_step) + " (must be finite and > 0)");
-  }
-  if (step_index >= (1ULL << 32)) throw InvalidArgument("step_index must be < 2^32");
+StepReport SdpdBackend::step(std::uint64_t step_index, double time_step) {
   const std::size_t n = mass_.size();
   const int dim = model_.box.dimension;
   StepReport rep;
@@ -504,50 +464,11 @@ void SdpdBackend::extrapolate_from_fluid(ParticleKind target, double lo, double 
 }
 
 void SdpdBackend::check_health(std::uint64_t step_index, std::uint32_t substep) const {
-  const std::size_t n = mass_.size();
-  auto fail = [&](std::size_t i, const std::string& quantity, double value,
-                  const std::string& why) {
-    throw NumericalFailure("sdpd blow-up at step " + std::to_string(step_index) + " sub-step " +
-                               std::to_string(substep) + ": particle id " +
-                               std::to_string(ids_[i]) + " " + quantity + " = " +
-                               format_value(value) + " (" + why + ")",
-                           {{"step", std::to_string(step_index)},
-                            {"substep", std::to_string(substep)},
-                            {"particle_id", std::to_string(ids_[i])},
-                            {"quantity", quantity},
-                            {"value", format_value(value)}});
-  };
-  const double band = model_.density_band, rho0 = model_.reference_density;
-  auto bad = [&](std::size_t i) {
-    bool ok = std::fabs(y_.rho[i] / rho0 - 1.0) <= band && pbox_.inside(&y_.x[3 * i]);
-    for (int a = 0; a < 3; ++a)
-      ok = ok && std::isfinite(y_.x[3 * i + a]) && std::isfinite(y_.v[3 * i + a]);
-    for (const auto& c : y_.c) ok = ok && std::isfinite(c[i]);
-    return !ok;
-  };
-  const auto ni = static_cast<std::int64_t>(n);
-  std::int64_t first = ni;
-#pragma omp parallel for schedule(static) if (ni > kMinParallelLight) reduction(min : first)
-  for (std::int64_t ii = 0; ii < ni; ++ii) {
-    if (bad(static_cast<std::size_t>(ii))) first = std::min(first, ii);
-  }
-  for (std::size_t i = static_cast<std::size_t>(first); i < n; ++i) {
-    for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(y_.x[3 * i + a])) fail(i, "position", y_.x[3 * i + a], "non-finite");
-      if (!std::isfinite(y_.v[3 * i + a])) fail(i, "velocity", y_.v[3 * i + a], "non-finite");
-    }
-    const double rho = y_.rho[i];
-    if (!std::isfinite(rho)) fail(i, "density", rho, "non-finite");
-    if (std::fabs(rho / rho0 - 1.0) > band) {
-      fail(i, "density", rho, "outside rho_0 (1 +- " + format_value(band) + ")");
-    }
-    if (!pbox_.inside(&y_.x[3 * i]))
-      fail(i, "position", y_.x[3 * i], "particle left the box on a walled axis");
-    for (std::size_t s = 0; s < y_.c.size(); ++s) {
-      if (!std::isfinite(y_.c[s][i]))
-        fail(i, "concentration[" + model_.species[s].name + "]", y_.c[s][i], "non-finite");
-    }
-  }
+  HealthView h{y_.x, y_.v, y_.c, model_.species, ids_, pbox_};
+  h.rho = &y_.rho;
+  h.rho0 = model_.reference_density;
+  h.band = model_.density_band;
+  fluid::check_health(name(), h, step_index, substep);
 }
 
 std::size_t SdpdBackend::memory_bytes() const {
@@ -570,8 +491,7 @@ std::size_t SdpdBackend::memory_bytes() const {
          vb(slab_of_) + vb(slab_start_) + vb(slab_members_) + vb(hin_) + vb(hacc_);
 }
 
-void SdpdBackend::read_state(ParticleState& out) const {
-  require_initialized("read_state");
+void SdpdBackend::write_state(ParticleState& out) const {
   out.dimension = model_.box.dimension;
   out.positions = y_.x;
   out.velocities = y_.v;
@@ -581,39 +501,7 @@ void SdpdBackend::read_state(ParticleState& out) const {
   out.ids = ids_;
 }
 
-const std::vector<double>& SdpdBackend::concentrations(int species) const {
-  require_initialized("concentrations");
-  if (species < 0 || species >= static_cast<int>(y_.c.size())) {
-    throw InvalidArgument("species index " + std::to_string(species) + " out of range [0, " +
-                          std::to_string(y_.c.size()) + ")");
-  }
-  return y_.c[species];
-}
-
-void SdpdBackend::set_concentrations(int species, std::span<const double> values) {
-  require_initialized("set_concentrations");
-  (void)concentrations(species);
-  if (values.size() != mass_.size()) {
-    throw InvalidArgument("set_concentrations: " + std::to_string(values.size()) +
-                          " values, expected " + std::to_string(mass_.size()));
-  }
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (!std::isfinite(values[i])) {
-      throw InvalidArgument("set_concentrations: value[" + std::to_string(i) +
-                            "] = " + format_value(values[i]) + " (must be finite)");
-    }
-  }
-  y_.c[species].assign(values.begin(), values.end());
-  species_.apply_dirichlet(y_.c);
-  prepared_ = false;
-}
-
-std::string SdpdBackend::save() const {
-  require_initialized("save");
-  BlobWriter w;
-  w.put(kMagic);
-  w.put(open_ ? kBlobVersionOpen : kBlobVersion);
-  w.put_string(name());
+void SdpdBackend::save_state(BlobWriter& w) const {
   w.put(model_.seed);
   w.put(time_);
   w.put_vector(y_.x);
@@ -631,16 +519,11 @@ std::string SdpdBackend::save() const {
     w.put_vector(conveyor_);
     w.put_vector(holes_);
   }
-  return w.take();
 }
 
-void SdpdBackend::restore(std::string_view blob) {
-  require_initialized("restore");
-  BlobReader r(blob);
-  if (r.get<std::uint64_t>() != kMagic)
-    throw InvalidArgument("restore: not a sadr fluid state blob");
-  const auto version = r.get<std::uint32_t>();
-  if (version != kBlobVersion && version != 1 && version != kBlobVersionOpen) {
+void SdpdBackend::restore_state(BlobReader& r, std::uint32_t version) {
+  constexpr std::uint32_t kBlobVersionOpen = 3;
+  if (version < 1 || version > kBlobVersionOpen) {
     throw InvalidArgument("restore: blob version " + std::to_string(version) +
                           " unsupported (this build reads 1, 2 and 3)");
   }
@@ -649,9 +532,6 @@ void SdpdBackend::restore(std::string_view blob) {
                           (open_ ? "has no particle kinds but the model has an open boundary"
                                  : "has particle kinds (open boundary) but the model has none"));
   }
-  const std::string backend = r.get_string();
-  if (backend != name())
-    throw InvalidArgument("restore: blob was written by backend '" + backend + "', not 'sdpd'");
   if (r.get<std::uint64_t>() != model_.seed)
     throw InvalidArgument("restore: blob seed differs from the model seed");
   const std::size_t n = mass_.size();
@@ -686,7 +566,7 @@ void SdpdBackend::restore(std::string_view blob) {
     holes = r.get_vector<double>();
     if (holes.size() % 3 != 0) throw InvalidArgument("restore: inlet holes have the wrong size");
   }
-  if (!r.at_end()) throw InvalidArgument("restore: trailing bytes in state blob");
+  r.expect_end();
   y_ = std::move(y);
   kinds_ = std::move(kinds);
   conveyor_ = std::move(conveyor);

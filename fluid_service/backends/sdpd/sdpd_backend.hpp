@@ -20,7 +20,7 @@
 #include <limits>
 #include <memory>
 
-#include "sadr/fluid/fluid_backend.hpp"
+#include "sadr/fluid/backend_base.hpp"
 #include "sadr/fluid/kernel.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
 #include "sadr/fluid/pair_terms.hpp"
@@ -31,18 +31,10 @@
 
 namespace sadr::fluid {
 
-class SdpdBackend final : public FluidBackend {
+class SdpdBackend final : public BackendBase {
  public:
   [[nodiscard]] std::string_view name() const override { return "sdpd"; }
   [[nodiscard]] Capabilities capabilities() const override { return {true, true, true, true}; }
-  void initialize(const FluidModel& model, const ParticleState& initial,
-                  const std::vector<std::vector<double>>& concentrations) override;
-  StepReport advance(std::uint64_t step_index, double time_step) override;
-  void read_state(ParticleState& out) const override;
-  [[nodiscard]] const std::vector<double>& concentrations(int species) const override;
-  void set_concentrations(int species, std::span<const double> values) override;
-  [[nodiscard]] std::string save() const override;
-  void restore(std::string_view blob) override;
   [[nodiscard]] double time() const override { return time_; }
 
   /// Rates of change at one state (public for the tests of the pair loop).
@@ -62,6 +54,20 @@ class SdpdBackend final : public FluidBackend {
   [[nodiscard]] StabilityLimits current_limits();
   /// Neighbour-list builds since initialize() (benchmark diagnostics).
   [[nodiscard]] std::uint64_t list_builds() const { return list_builds_; }
+
+ protected:
+  void setup(const FluidModel& model, const ParticleState& initial,
+             const std::vector<std::vector<double>>& concentrations) override;
+  StepReport step(std::uint64_t step_index, double time_step) override;
+  void write_state(ParticleState& out) const override;
+  std::vector<std::vector<double>>& fields() override { return y_.c; }
+  const std::vector<std::vector<double>>& fields() const override { return y_.c; }
+  const SpeciesTransport& transport() const override { return species_; }
+  void concentrations_changed() override { prepared_ = false; }
+  /// 2: + positions of the last list build; 3: + kinds, conveyor flags, inlet holes (open)
+  std::uint32_t state_version() const override { return open_ ? 3 : 2; }
+  void save_state(BlobWriter& w) const override;
+  void restore_state(BlobReader& r, std::uint32_t version) override;
 
  private:
   struct Y {
@@ -141,9 +147,7 @@ class SdpdBackend final : public FluidBackend {
   /// Open boundary: zero-gradient values of the `target` buffer particles (inlet: density;
   /// outlet: velocity) from the fluid particles with axis coordinate in [lo, hi).
   void extrapolate_from_fluid(ParticleKind target, double lo, double hi);
-  void require_initialized(const char* what) const;
 
-  bool initialized_ = false;
   FluidModel model_;
   Kernel kernel_;
   TaitEos eos_;

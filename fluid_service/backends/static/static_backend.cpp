@@ -14,41 +14,14 @@
 
 namespace sadr::fluid {
 
-namespace {
-constexpr std::uint64_t kMagic = 0x3154415453524441ULL;
-constexpr std::uint32_t kBlobVersion = 1;
-}  // namespace
-
-void StaticBackend::require_initialized(const char* what) const {
-  if (!initialized_)
-    throw FailedPrecondition(std::string("static: ") + what + " before initialize()");
-}
-
-void StaticBackend::initialize(const FluidModel& model, const ParticleState& initial,
-                               const std::vector<std::vector<double>>& concentrations) {
-  model.validate();
+void StaticBackend::setup(const FluidModel& model, const ParticleState& initial,
+                          const std::vector<std::vector<double>>& concentrations) {
   if (!model.backend_parameters.empty()) {
     throw InvalidArgument("static: unknown parameter '" + model.backend_parameters.begin()->first +
                           "' (this backend takes none beyond density_diffusion, diffusion_eps, "
                           "density_band, neighbor_skin)");
   }
-  initial.validate();
-  if (initial.dimension != model.box.dimension) {
-    throw InvalidArgument("particle state dimension " + std::to_string(initial.dimension) +
-                          " differs from box.dimension " + std::to_string(model.box.dimension));
-  }
   const std::size_t n = initial.size();
-  if (!concentrations.empty() && concentrations.size() != model.species.size()) {
-    throw InvalidArgument("concentrations has " + std::to_string(concentrations.size()) +
-                          " species, model has " + std::to_string(model.species.size()));
-  }
-  for (std::size_t s = 0; s < concentrations.size(); ++s) {
-    if (concentrations[s].size() != n) {
-      throw InvalidArgument("concentrations[" + std::to_string(s) + "] has " +
-                            std::to_string(concentrations[s].size()) + " entries, expected " +
-                            std::to_string(n));
-    }
-  }
   model_ = model;
   state_ = initial;
   if (state_.velocities.empty()) state_.velocities.assign(3 * n, 0.0);
@@ -99,7 +72,6 @@ void StaticBackend::initialize(const FluidModel& model, const ParticleState& ini
   dc0_ = c_;
   dc1_ = c_;
   time_ = 0;
-  initialized_ = true;
 }
 
 void StaticBackend::rates(const std::vector<std::vector<double>>& c,
@@ -141,11 +113,7 @@ StabilityLimits StaticBackend::current_limits() const {
   return lim;
 }
 
-StepReport StaticBackend::advance(std::uint64_t step_index, double time_step) {
-  require_initialized("advance");
-  if (!(std::isfinite(time_step) && time_step > 0)) {
-    throw InvalidArgument("time_step = " + format_value(time_step) + " (must be finite and > 0)");
-  }
+StepReport StaticBackend::step(std::uint64_t step_index, double time_step) {
   StepReport rep;
   rep.stable_dt = StabilityLimits::kNone;
   rep.limiting_criterion = "none";
@@ -168,14 +136,9 @@ StepReport StaticBackend::advance(std::uint64_t step_index, double time_step) {
         for (std::size_t i = 0; i < n; ++i) {
           c_[s][i] += 0.5 * dt * (dc0_[s][i] + dc1_[s][i]);
           if (!std::isfinite(c_[s][i])) {
-            throw NumericalFailure("static: concentration[" + model_.species[s].name +
-                                       "] of particle id " + std::to_string(state_.ids[i]) + " = " +
-                                       format_value(c_[s][i]) + " at step " +
-                                       std::to_string(step_index) + " (non-finite)",
-                                   {{"step", std::to_string(step_index)},
-                                    {"particle_id", std::to_string(state_.ids[i])},
-                                    {"quantity", "concentration"},
-                                    {"value", format_value(c_[s][i])}});
+            throw_numerical_failure({name(), step_index, sub, state_.ids[i],
+                                     "concentration[" + model_.species[s].name + "]", c_[s][i],
+                                     "non-finite"});
           }
         }
       }
@@ -195,57 +158,21 @@ StepReport StaticBackend::advance(std::uint64_t step_index, double time_step) {
   return rep;
 }
 
-void StaticBackend::read_state(ParticleState& out) const {
-  require_initialized("read_state");
-  out = state_;
-}
-
-const std::vector<double>& StaticBackend::concentrations(int species) const {
-  require_initialized("concentrations");
-  if (species < 0 || species >= static_cast<int>(c_.size())) {
-    throw InvalidArgument("species index " + std::to_string(species) + " out of range [0, " +
-                          std::to_string(c_.size()) + ")");
-  }
-  return c_[species];
-}
-
-void StaticBackend::set_concentrations(int species, std::span<const double> values) {
-  (void)concentrations(species);
-  if (values.size() != state_.size()) {
-    throw InvalidArgument("set_concentrations: " + std::to_string(values.size()) +
-                          " values, expected " + std::to_string(state_.size()));
-  }
-  c_[species].assign(values.begin(), values.end());
-  species_.apply_dirichlet(c_);
-}
-
-std::string StaticBackend::save() const {
-  require_initialized("save");
-  BlobWriter w;
-  w.put(kMagic);
-  w.put(kBlobVersion);
-  w.put_string(name());
+void StaticBackend::save_state(BlobWriter& w) const {
   w.put(time_);
   w.put<std::uint64_t>(c_.size());
   for (const auto& c : c_) w.put_vector(c);
-  return w.take();
 }
 
-void StaticBackend::restore(std::string_view blob) {
-  require_initialized("restore");
-  BlobReader r(blob);
-  if (r.get<std::uint64_t>() != kMagic)
-    throw InvalidArgument("restore: not a sadr static-backend blob");
-  const auto version = r.get<std::uint32_t>();
-  if (version != kBlobVersion)
+void StaticBackend::restore_state(BlobReader& r, std::uint32_t version) {
+  if (version != 1)
     throw InvalidArgument("restore: blob version " + std::to_string(version) + " unsupported");
-  if (r.get_string() != name()) throw InvalidArgument("restore: blob written by another backend");
   const double t = r.get<double>();
   const auto ns = r.get<std::uint64_t>();
   if (ns != c_.size()) throw InvalidArgument("restore: species count differs from the model");
   std::vector<std::vector<double>> c;
   for (std::size_t s = 0; s < ns; ++s) c.push_back(r.get_vector<double>(state_.size()));
-  if (!r.at_end()) throw InvalidArgument("restore: trailing bytes in state blob");
+  r.expect_end();
   c_ = std::move(c);
   time_ = t;
 }

@@ -8,34 +8,36 @@
 /// run without a flow.
 #pragma once
 
-#include "sadr/fluid/fluid_backend.hpp"
+#include "sadr/fluid/backend_base.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
 #include "sadr/fluid/species_transport.hpp"
 #include "sadr/fluid/stability.hpp"
 
 namespace sadr::fluid {
 
-class StaticBackend final : public FluidBackend {
+class StaticBackend final : public BackendBase {
  public:
   [[nodiscard]] std::string_view name() const override { return "static"; }
   [[nodiscard]] Capabilities capabilities() const override { return {false, true, false, true}; }
-  void initialize(const FluidModel& model, const ParticleState& initial,
-                  const std::vector<std::vector<double>>& concentrations) override;
-  StepReport advance(std::uint64_t step_index, double time_step) override;
-  void read_state(ParticleState& out) const override;
-  [[nodiscard]] const std::vector<double>& concentrations(int species) const override;
-  void set_concentrations(int species, std::span<const double> values) override;
-  [[nodiscard]] std::string save() const override;
-  void restore(std::string_view blob) override;
   [[nodiscard]] double time() const override { return time_; }
   /// Stability limits at the current concentrations.
   [[nodiscard]] StabilityLimits current_limits() const;
 
+ protected:
+  void setup(const FluidModel& model, const ParticleState& initial,
+             const std::vector<std::vector<double>>& concentrations) override;
+  StepReport step(std::uint64_t step_index, double time_step) override;
+  void write_state(ParticleState& out) const override { out = state_; }
+  std::vector<std::vector<double>>& fields() override { return c_; }
+  const std::vector<std::vector<double>>& fields() const override { return c_; }
+  const SpeciesTransport& transport() const override { return species_; }
+  std::uint32_t state_version() const override { return 1; }
+  void save_state(BlobWriter& w) const override;
+  void restore_state(BlobReader& r, std::uint32_t version) override;
+
  private:
   void rates(const std::vector<std::vector<double>>& c, std::vector<std::vector<double>>& dc) const;
-  void require_initialized(const char* what) const;
 
-  bool initialized_ = false;
   FluidModel model_;
   ParticleState state_;
   std::vector<std::vector<double>> c_, ctmp_, dc0_, dc1_;

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <sstream>
 
 #include "sadr/common/status.hpp"
 #include "sadr/fluid/parallel.hpp"
@@ -17,18 +16,7 @@
 namespace sadr::fluid {
 namespace {
 
-constexpr std::string_view kMagic = "sadr.tdpd";
-// 2: + list reference positions (the half-pair sums follow the slabs of the last list build)
-// 3: the stored rates exclude the effective-wall Dirichlet term (integrated exactly)
-constexpr std::uint32_t kVersion = 3;
 constexpr std::uint64_t kInitialEval = std::uint64_t{1} << 63;  // noise "sub" flag
-
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return os.str();
-}
 
 }  // namespace
 
@@ -37,41 +25,20 @@ double TdpdBackend::fickian_slope_ideal(double rho, double r_cc) {
   return 2.0 * std::numbers::pi * rho * std::pow(r_cc, 5) / 315.0;
 }
 
-void TdpdBackend::require_initialized(const char* what) const {
-  if (!initialized_)
-    throw FailedPrecondition(std::string("tdpd: ") + what + " before initialize()");
+void TdpdBackend::check_model(const FluidModel& model) const {
+  // FluidModel::validate() asks for shear_viscosity > 0 with k_B T > 0 (SDPD's
+  // fluctuation-dissipation): checked on a copy with a placeholder value.
+  FluidModel check = model;
+  if (check.shear_viscosity <= 0.0) check.shear_viscosity = 1.0;
+  check.validate();
 }
 
-void TdpdBackend::initialize(const FluidModel& model, const ParticleState& initial,
-                             const std::vector<std::vector<double>>& concentrations) {
-  {
-    // FluidModel::validate() asks for shear_viscosity > 0 with k_B T > 0 (SDPD's
-    // fluctuation-dissipation); in tDPD the viscosity is an output of (a, gamma, rho, k_B T)
-    // and the field is ignored, so it is checked on a copy with a placeholder value.
-    FluidModel check = model;
-    if (check.shear_viscosity <= 0.0) check.shear_viscosity = 1.0;
-    check.validate();
-  }
-  initial.validate();
+void TdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
+                        const std::vector<std::vector<double>>& concentrations) {
   params_.apply(model.backend_parameters);
   params_.validate(model.smoothing_length);
-  if (initial.dimension != model.box.dimension) {
-    throw InvalidArgument("tdpd: initial.dimension = " + std::to_string(initial.dimension) +
-                          " differs from box.dimension = " + std::to_string(model.box.dimension));
-  }
   const std::size_t ns = model.species.size();
-  if (!concentrations.empty() && concentrations.size() != ns) {
-    throw InvalidArgument("tdpd: concentrations has " + std::to_string(concentrations.size()) +
-                          " species, model has " + std::to_string(ns));
-  }
   n_ = initial.size();
-  for (std::size_t s = 0; s < concentrations.size(); ++s) {
-    if (concentrations[s].size() != n_) {
-      throw InvalidArgument("tdpd: concentrations[" + std::to_string(s) + "] has " +
-                            std::to_string(concentrations[s].size()) + " values, expected " +
-                            std::to_string(n_));
-    }
-  }
   model_ = model;
   pbox_ = PeriodicBox(model.box);
   const double rc = model.smoothing_length;
@@ -130,7 +97,6 @@ void TdpdBackend::initialize(const FluidModel& model, const ParticleState& initi
   list_ref_x_.clear();
   half_ = tdpd::HalfList{};
   list_builds_ = 0;
-  initialized_ = true;
 }
 
 void TdpdBackend::ensure_neighbors() const {
@@ -172,48 +138,16 @@ StabilityLimits TdpdBackend::current_limits() const {
 }
 
 void TdpdBackend::check_health(std::uint64_t step_index, std::uint32_t substep) const {
-  auto fail = [&](std::size_t i, const std::string& what, double value) {
-    throw NumericalFailure("tdpd blow-up at step " + std::to_string(step_index) + " substep " +
-                           std::to_string(substep) + ": particle " + std::to_string(i) + " " +
-                           what + " = " + num(value));
-  };
-  const int d = model_.box.dimension;
-  for (std::size_t i = 0; i < n_; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      if (!std::isfinite(x_[3 * i + k]))
-        fail(i, "position[" + std::to_string(k) + "]", x_[3 * i + k]);
-      if (!std::isfinite(v_[3 * i + k]))
-        fail(i, "velocity[" + std::to_string(k) + "]", v_[3 * i + k]);
-    }
-    for (int k = 0; k < d; ++k) {
-      if (!model_.box.periodic[k] &&
-          (x_[3 * i + k] < model_.box.lo[k] || x_[3 * i + k] > model_.box.hi[k])) {
-        fail(i, "position[" + std::to_string(k) + "] (left the box)", x_[3 * i + k]);
-      }
-    }
-    for (const int s : species_.transported()) {
-      if (!std::isfinite(c_[s][i])) {
-        fail(i, "concentration of " + model_.species[s].name, c_[s][i]);
-      }
-    }
-  }
+  HealthView h{x_, v_, c_, model_.species, ids_, pbox_};
+  h.only_species = &species_.transported();
+  fluid::check_health(name(), h, step_index, substep);
 }
 
-StepReport TdpdBackend::advance(std::uint64_t step_index, double time_step) {
-  require_initialized("advance()");
-  if (!(time_step > 0.0) || !std::isfinite(time_step)) {
-    throw InvalidArgument("tdpd: time_step = " + num(time_step) + " (allowed > 0)");
-  }
-  const StabilityLimits lim = current_limits();
-  const auto [stable, criterion] = lim.smallest();
-  double dt_max = stable;
-  if (model_.max_time_step > 0.0) {
-    if (!model_.force_time_step) lim.check(model_.max_time_step);
-    dt_max = model_.force_time_step ? model_.max_time_step : std::min(stable, model_.max_time_step);
-  }
-  const auto nsub =
-      static_cast<std::uint32_t>(std::max(1.0, std::ceil(time_step / dt_max * (1.0 - 1e-12))));
-  const double dt = time_step / nsub;
+StepReport TdpdBackend::step(std::uint64_t step_index, double time_step) {
+  const UniformSubsteps plan =
+      uniform_substeps(current_limits(), model_.max_time_step, model_.force_time_step, time_step);
+  const std::uint32_t nsub = plan.count;
+  const double dt = plan.dt;
   const auto n = static_cast<std::int64_t>(n_);
   const double lam = params_.lambda;
   const auto& transported = species_.transported();
@@ -272,8 +206,8 @@ StepReport TdpdBackend::advance(std::uint64_t step_index, double time_step) {
   rep.time = time_;
   rep.substeps = nsub;
   rep.particles_moved = true;
-  rep.stable_dt = stable;
-  rep.limiting_criterion = criterion;
+  rep.stable_dt = plan.limit;
+  rep.limiting_criterion = plan.limit_name;
   double vmax2 = 0.0;
   for (std::size_t i = 0; i < n_; ++i) {
     vmax2 = std::max(vmax2, v_[3 * i] * v_[3 * i] + v_[3 * i + 1] * v_[3 * i + 1] +
@@ -313,8 +247,7 @@ std::vector<double> TdpdBackend::densities() const {
   return rho;
 }
 
-void TdpdBackend::read_state(ParticleState& out) const {
-  require_initialized("read_state()");
+void TdpdBackend::write_state(ParticleState& out) const {
   out.dimension = model_.box.dimension;
   out.positions = x_;
   out.velocities = v_;
@@ -322,27 +255,6 @@ void TdpdBackend::read_state(ParticleState& out) const {
   out.masses.assign(n_, 1.0);
   out.kinds = kinds_;
   out.ids = ids_;
-}
-
-const std::vector<double>& TdpdBackend::concentrations(int species) const {
-  require_initialized("concentrations()");
-  if (species < 0 || static_cast<std::size_t>(species) >= c_.size()) {
-    throw InvalidArgument("tdpd: species index " + std::to_string(species) + " out of range [0, " +
-                          std::to_string(c_.size()) + ")");
-  }
-  return c_[static_cast<std::size_t>(species)];
-}
-
-void TdpdBackend::set_concentrations(int species, std::span<const double> values) {
-  require_initialized("set_concentrations()");
-  (void)concentrations(species);
-  if (values.size() != n_) {
-    throw InvalidArgument("tdpd: set_concentrations got " + std::to_string(values.size()) +
-                          " values, expected " + std::to_string(n_));
-  }
-  c_[static_cast<std::size_t>(species)].assign(values.begin(), values.end());
-  species_.apply_dirichlet(c_);
-  flux_stale_ = true;  // the stored fluxes belong to the old concentrations (forces do not)
 }
 
 void TdpdBackend::evaluate_current(std::uint64_t noise_step, double dt, std::vector<double>& force,
@@ -353,11 +265,7 @@ void TdpdBackend::evaluate_current(std::uint64_t noise_step, double dt, std::vec
            /*dirichlet_rate=*/true);
 }
 
-std::string TdpdBackend::save() const {
-  require_initialized("save()");
-  BlobWriter w;
-  w.put_string(kMagic);
-  w.put(kVersion);
+void TdpdBackend::save_state(BlobWriter& w) const {
   w.put<std::uint64_t>(n_);
   w.put<std::uint64_t>(c_.size());
   w.put(time_);
@@ -369,17 +277,12 @@ std::string TdpdBackend::save() const {
   for (const auto& c : c_) w.put_vector(c);
   for (const auto& q : q_) w.put_vector(q);
   w.put_vector(list_ref_x_);
-  return w.take();
 }
 
-void TdpdBackend::restore(std::string_view blob) {
-  require_initialized("restore()");
-  BlobReader r(blob);
-  if (r.get_string() != kMagic) throw InvalidArgument("tdpd: blob is not a tDPD state");
-  const auto version = r.get<std::uint32_t>();
-  if (version < 1 || version > kVersion) {
+void TdpdBackend::restore_state(BlobReader& r, std::uint32_t version) {
+  if (version < 1 || version > state_version()) {
     throw InvalidArgument("tdpd: blob version " + std::to_string(version) +
-                          ", this build reads 1 to " + std::to_string(kVersion));
+                          ", this build reads 1 to " + std::to_string(state_version()));
   }
   if (r.get<std::uint64_t>() != n_ || r.get<std::uint64_t>() != c_.size()) {
     throw InvalidArgument("tdpd: blob from a model with a different particle or species count");
@@ -399,7 +302,7 @@ void TdpdBackend::restore(std::string_view blob) {
     if (!ref.empty() && ref.size() != 3 * n_)
       throw InvalidArgument("tdpd: list reference positions in the blob have the wrong size");
   }
-  if (!r.at_end()) throw InvalidArgument("tdpd: trailing bytes in state blob");
+  r.expect_end();
   time_ = t;
   have_forces_ = hf;
   // Rates of versions < 3 may contain the Dirichlet wall term: recomputed at the next step.

@@ -75,4 +75,19 @@ Substep next_substep(const StabilityLimits& limits, double max_time_step, bool f
   return out;
 }
 
+UniformSubsteps uniform_substeps(const StabilityLimits& limits, double max_time_step, bool force,
+                                 double time_step) {
+  UniformSubsteps out;
+  std::tie(out.limit, out.limit_name) = limits.smallest();
+  double dt_max = out.limit;
+  if (max_time_step > 0.0) {
+    if (!force) limits.check(max_time_step);
+    dt_max = force ? max_time_step : std::min(out.limit, max_time_step);
+  }
+  out.count =
+      static_cast<std::uint32_t>(std::max(1.0, std::ceil(time_step / dt_max * (1.0 - 1e-12))));
+  out.dt = time_step / out.count;
+  return out;
+}
+
 }  // namespace sadr::fluid

@@ -16,6 +16,7 @@
 ///               (SpeciesTransport::reaction_rate_scale), margin 2 on Heun's limit.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -58,11 +59,29 @@ struct Substep {
   std::string limit_name;  ///< its name ("acoustic", ...)
 };
 
+/// The two sub-step rules of the fluid core (docs/fluid-core.md, "Sub-steps"):
+///  - adaptive (sdpd, static): next_substep() before every sub-step, from the limits at the
+///    current state, so the sub-step count of an advance follows the flow;
+///  - uniform (tdpd): uniform_substeps() once per advance, from the limits at its start,
+///    `count` equal sub-steps (the velocity-Verlet pair forces carry over between them).
+
 /// The next sub-step of what `remaining` [time] is left of an advance: `remaining` split
 /// evenly into the fewest pieces no longer than the binding limit, or than `max_time_step`
 /// when that is > 0 (refused through check() unless `force`). Lowers `stable_dt` and sets
 /// `criterion` when the binding limit is tighter than what they hold (StepReport fields).
 Substep next_substep(const StabilityLimits& limits, double max_time_step, bool force,
                      double remaining, double& stable_dt, std::string& criterion);
+
+/// The uniform rule: the fewest equal sub-steps of `time_step` no longer than the binding limit,
+/// or than min(limit, max_time_step) when max_time_step > 0 (refused through check() unless
+/// `force`, which takes max_time_step as it is).
+struct UniformSubsteps {
+  std::uint32_t count = 1;  ///< sub-steps
+  double dt = 0.0;          ///< their length [time]
+  double limit = 0.0;       ///< the binding stability limit [time]
+  std::string limit_name;   ///< its name
+};
+UniformSubsteps uniform_substeps(const StabilityLimits& limits, double max_time_step, bool force,
+                                 double time_step);
 
 }  // namespace sadr::fluid

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file state_blob.hpp
-/// Little-endian-agnostic (native) binary blobs for exact restarts: a magic tag, a format
-/// version, then length-prefixed arrays. Readers check every length and throw
+/// Native-endian binary blobs for exact restarts: a header (backend_base.hpp), then
+/// length-prefixed arrays. Readers check every length and throw
 /// InvalidArgument on truncation or mismatch.
 #pragma once
 
@@ -71,7 +71,18 @@ class BlobReader {
     pos_ += n;
     return s;
   }
+  /// The next n bytes (no length prefix).
+  std::string get_chars(std::size_t n) {
+    need(n);
+    std::string s(blob_.substr(pos_, n));
+    pos_ += n;
+    return s;
+  }
   [[nodiscard]] bool at_end() const { return pos_ == blob_.size(); }
+  /// InvalidArgument unless every byte was read (call before committing a restored state).
+  void expect_end() const {
+    if (!at_end()) throw InvalidArgument("restore: trailing bytes in state blob");
+  }
 
  private:
   void need(std::size_t n) const {

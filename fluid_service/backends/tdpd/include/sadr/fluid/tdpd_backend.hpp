@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "sadr/fluid/backend_base.hpp"
 #include "sadr/fluid/backend_registry.hpp"
-#include "sadr/fluid/fluid_backend.hpp"
 #include "sadr/fluid/kernel.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
 #include "sadr/fluid/periodic_box.hpp"
@@ -65,21 +65,13 @@ struct TdpdParameters {
   void apply(const std::map<std::string, double>& kv);
 };
 
-class TdpdBackend final : public FluidBackend {
+class TdpdBackend final : public BackendBase {
  public:
   [[nodiscard]] std::string_view name() const override { return "tdpd"; }
   [[nodiscard]] Capabilities capabilities() const override { return {true, true, true, true}; }
   /// Parameters used by the next initialize() (defaults: the li2015 calibration set).
   void set_parameters(const TdpdParameters& p) { params_ = p; }
   [[nodiscard]] const TdpdParameters& parameters() const { return params_; }
-  void initialize(const FluidModel& model, const ParticleState& initial,
-                  const std::vector<std::vector<double>>& concentrations) override;
-  StepReport advance(std::uint64_t step_index, double time_step) override;
-  void read_state(ParticleState& out) const override;
-  [[nodiscard]] const std::vector<double>& concentrations(int species) const override;
-  void set_concentrations(int species, std::span<const double> values) override;
-  [[nodiscard]] std::string save() const override;
-  void restore(std::string_view blob) override;
   [[nodiscard]] double time() const override { return time_; }
 
   /// Stability limits at the current state [time] (acoustic, viscous, body_force, diffusion).
@@ -101,6 +93,24 @@ class TdpdBackend final : public FluidBackend {
   /// Particles reflected at the effective walls so far.
   [[nodiscard]] std::uint64_t wall_reflections() const { return reflections_; }
 
+ protected:
+  /// FluidModel::validate() on a copy with shear_viscosity > 0: in tDPD the viscosity is an
+  /// output of (a, gamma, rho, k_B T) and the field is ignored.
+  void check_model(const FluidModel& model) const override;
+  void setup(const FluidModel& model, const ParticleState& initial,
+             const std::vector<std::vector<double>>& concentrations) override;
+  StepReport step(std::uint64_t step_index, double time_step) override;
+  void write_state(ParticleState& out) const override;
+  std::vector<std::vector<double>>& fields() override { return c_; }
+  const std::vector<std::vector<double>>& fields() const override { return c_; }
+  const SpeciesTransport& transport() const override { return species_; }
+  /// The stored fluxes belong to the old concentrations (the forces do not).
+  void concentrations_changed() override { flux_stale_ = true; }
+  /// 2: + list reference positions; 3: the stored rates exclude the effective-wall Dirichlet term
+  std::uint32_t state_version() const override { return 3; }
+  void save_state(BlobWriter& w) const override;
+  void restore_state(BlobReader& r, std::uint32_t version) override;
+
  private:
   void evaluate(const std::vector<double>& x, const std::vector<double>& v,
                 const std::vector<std::vector<double>>& c, std::uint64_t noise_key, double dt,
@@ -118,12 +128,10 @@ class TdpdBackend final : public FluidBackend {
   template <class PerParticle>
   void slab_phases(PerParticle&& per_particle) const;
   void check_health(std::uint64_t step_index, std::uint32_t substep) const;
-  void require_initialized(const char* what) const;
   /// Kernel-summed number densities rho_i = sum_j W(r_ij) (masses 1) [1/length^d].
   [[nodiscard]] std::vector<double> densities() const;
 
   TdpdParameters params_{};
-  bool initialized_ = false;
   FluidModel model_;
   PeriodicBox pbox_;
   Kernel kernel_;
