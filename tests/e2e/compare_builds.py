@@ -25,12 +25,19 @@ compared byte by byte; run.json is not (it holds wall times). A scene that
 fails on both builds with the same exit code is reported as `both-fail`
 (a refusal test's scene, say), which counts as identical; anything else that
 differs is a failure. Exit 0 when every scene is identical.
+
+With --fluid-blob-payload, fluid checkpoint blobs are compared by content
+after the fluid state header (backend name and state version included), and
+their file names without the content hash: for a change of the header layout
+only (issue 14: the fluid core owns it, old headers are still read), which
+must leave everything after it, and every frame, byte-identical.
 """
 import argparse
 import hashlib
 import pathlib
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import time
@@ -58,7 +65,70 @@ def e2e_extra(scene: pathlib.Path) -> list[str]:
     return []
 
 
-def digest_tree(out: pathlib.Path) -> dict[str, str]:
+FLUID_BLOB = re.compile(r"(.*checkpoint/fluid-\d{12})-[0-9a-f]{8}\.blob$")
+# Fluid state headers: format 1 (backend_base.hpp) and the per-backend ones before it.
+LEGACY_TAGS = {0x3144504453524441, 0x3154415453524441}  # sdpd, static
+
+
+def fluid_state_payload(state: bytes) -> bytes:
+    """backend name + state version + everything after the header of a fluid state blob."""
+    (n,) = struct.unpack_from("<Q", state, 0)
+    if n in LEGACY_TAGS:  # tag, version, name
+        (ver,) = struct.unpack_from("<I", state, 8)
+        (ln,) = struct.unpack_from("<Q", state, 12)
+        name, rest = state[20:20 + ln], state[20 + ln:]
+    elif state[8:8 + n] == b"sadr.tdpd":  # "sadr.tdpd", version
+        (ver,) = struct.unpack_from("<I", state, 8 + n)
+        name, rest = b"tdpd", state[12 + n:]
+    elif state[8:8 + n] == b"sadr.fluid.state":  # tag, format, name, version
+        at = 8 + n + 4
+        (ln,) = struct.unpack_from("<Q", state, at)
+        name = state[at + 8:at + 8 + ln]
+        (ver,) = struct.unpack_from("<I", state, at + 8 + ln)
+        rest = state[at + 12 + ln:]
+    else:
+        return state
+    return name + b"/" + str(ver).encode() + b"/" + rest
+
+
+def varint(b: bytes, i: int) -> tuple[int, int]:
+    v = shift = 0
+    while True:
+        c = b[i]
+        i += 1
+        v |= (c & 0x7F) << shift
+        shift += 7
+        if c < 0x80:
+            return v, i
+
+
+def snapshot_digest(data: bytes) -> str:
+    """sha256 of a serialized sadr.common.v1.Snapshot with field 5 (blob) by its payload."""
+    h = hashlib.sha256()
+    i = 0
+    while i < len(data):
+        start = i
+        tag, i = varint(data, i)
+        wire = tag & 7
+        if wire == 0:
+            _, i = varint(data, i)
+        elif wire == 1:
+            i += 8
+        elif wire == 5:
+            i += 4
+        elif wire == 2:
+            n, j = varint(data, i)
+            i = j + n
+            if tag >> 3 == 5:
+                h.update(b"blob:" + fluid_state_payload(data[j:i]))
+                continue
+        else:
+            return hashlib.sha256(data).hexdigest()
+        h.update(data[start:i])
+    return h.hexdigest()
+
+
+def digest_tree(out: pathlib.Path, fluid_payload: bool = False) -> dict[str, str]:
     """Relative path -> sha256 of every compared file of one run."""
     files = {}
     for p in sorted(out.rglob("*")):
@@ -66,6 +136,10 @@ def digest_tree(out: pathlib.Path) -> dict[str, str]:
             continue
         rel = p.relative_to(out).as_posix()
         if rel.endswith("run.json") or rel.endswith(".log") or rel.endswith("checkpoint.json"):
+            continue
+        m = FLUID_BLOB.match(rel) if fluid_payload else None
+        if m:
+            files[m.group(1) + ".blob"] = snapshot_digest(p.read_bytes())
             continue
         files[rel] = hashlib.sha256(p.read_bytes()).hexdigest()
     return files
@@ -117,6 +191,8 @@ def main() -> int:
     ap.add_argument("--only", help="substring: run only scenes whose name contains it")
     ap.add_argument("--resume", action="store_true",
                     help="also resume OLD's mid-run checkpoint of every example with NEW")
+    ap.add_argument("--fluid-blob-payload", action="store_true",
+                    help="compare fluid checkpoint blobs after their state header (see above)")
     args = ap.parse_args()
 
     scenes = [(p, ["--stop-at", STOP_AT[p.stem]] if p.stem in STOP_AT else [])
@@ -138,7 +214,8 @@ def main() -> int:
             result = "both-fail" if ok else f"rc {rca}/{rcb}"
             nfiles = 0
         else:
-            da, db = digest_tree(oa), digest_tree(ob)
+            da = digest_tree(oa, args.fluid_blob_payload)
+            db = digest_tree(ob, args.fluid_blob_payload)
             ok = da == db and len(da) > 0
             nfiles = len(da)
             result = "identical" if ok else "DIFFERS"
@@ -154,8 +231,8 @@ def main() -> int:
         if args.resume and scene.parent.name == "examples" and ok and rca == 0:
             orr = args.work / "resume" / tag
             rcr, logr = resume_one(args.old_bin, args.new_bin, scene, orr, extra)
-            dr = digest_tree(orr) if rcr == 0 else {}
-            ref = digest_tree(oa)
+            dr = digest_tree(orr, args.fluid_blob_payload) if rcr == 0 else {}
+            ref = digest_tree(oa, args.fluid_blob_payload)
             if not any(k.startswith("checkpoint/") for k in ref):
                 # The whole run wrote no checkpoint; the half run's stays: frames only.
                 dr = {k: v for k, v in dr.items() if not k.startswith("checkpoint/")}
