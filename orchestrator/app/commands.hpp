@@ -57,6 +57,8 @@ struct CliOptions {
 };
 
 int cmd_validate(const CliOptions& options);
+/// `sadr backends [--markdown]` (backends_command.cpp).
+int cmd_backends(bool markdown);
 int cmd_run(const CliOptions& options);
 int cmd_resume(const CliOptions& options);
 /// Combines DIR/realization_*/frames/*.csv into DIR/ensemble/ (mean, variance).

@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       std::string("sadr ") + sadr::kVersion +
       ": stochastic advection-diffusion-reaction in particle fluids.\n"
-      "A particle fluid (fluid_service: an SDPD, tDPD or static backend) carries\n"
+      "A particle fluid (fluid_service; `sadr backends` lists its backends) carries\n"
       "molecules whose reactions and diffusion are simulated exactly (ssa_service:\n"
       "Next Subvolume Method on the particle diffusion graph), coupled by Lie or\n"
       "Strang splitting.\n\n"
@@ -158,6 +158,11 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingDirectory);
 
+  auto* backends = app.add_subcommand(
+      "backends", "list the fluid backends, their capabilities and parameters (fluid.parameters)");
+  bool markdown = false;
+  backends->add_flag("--markdown", markdown, "as the Markdown tables of docs/scene-format.md");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -177,6 +182,7 @@ int main(int argc, char** argv) {
     o.mode = ServiceMode::kRemote;
   }
   try {
+    if (*backends) return cmd_backends(markdown);
     if (*validate) return cmd_validate(o);
     if (*run) return cmd_run(o);
     if (*ensemble) return cmd_ensemble(o);

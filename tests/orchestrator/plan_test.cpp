@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "sadr/fluid/backend_schema.hpp"
 #include "sadr/orchestrator/plan.hpp"
 
 namespace sadr::orchestrator {
@@ -79,6 +80,21 @@ TEST(Plan, StaticBackendWithDeterministicSpeciesStillIntegratesThem) {
   EXPECT_FALSE(p.graph_rebuild_each_step);
   EXPECT_EQ(p.fluid_species, std::vector<std::string>{"C"});
   EXPECT_TRUE(mentions(p.skipped, "particle motion: none"));
+}
+
+// The plan reads what a backend does from its schema entry, for every backend there is.
+TEST(Plan, DecidesFromTheBackendSchema) {
+  for (const auto& b : sadr::fluid::schema::backends()) {
+    Scene s = moving_scene();
+    s.fluid.backend = b.name;
+    s.species = {species("A", true)};  // no deterministic species
+    const Plan p = make_plan(s);
+    const bool moves = b.capabilities.moves_particles;
+    EXPECT_EQ(p.graph_rebuild_each_step, moves) << b.name;
+    EXPECT_EQ(p.fluid_service, moves) << b.name;
+    EXPECT_EQ(p.thermal_noise, moves) << b.name;  // (k_B T = 1)
+    EXPECT_EQ(mentions(p.skipped, "backend '" + b.name + "' moves no particles"), !moves) << b.name;
+  }
 }
 
 TEST(Plan, NoNoiseAtZeroTemperature) {

@@ -80,6 +80,21 @@ const std::vector<MalformedCase>& cases() {
        "  backend: sdp\n",
        {"scene.yaml:13:12: fluid.backend: unknown fluid backend 'sdp'; did you mean 'sdpd'? "
         "(allowed: sdpd, static, tdpd)"}},
+      // The backend schema decides (sadr/fluid/backend_schema.hpp): kernels, parameters.
+      {"kernel_the_backend_lacks",
+       "  backend: static\n",
+       "  backend: tdpd\n  kernel: wendland_c2\n",
+       {"scene.yaml:14:11: fluid.kernel: unknown kernel 'wendland_c2'", "(allowed: lucy)"}},
+      {"parameter_unknown_to_the_backend",
+       "  smoothing_length: 0.45\n",
+       "  smoothing_length: 0.45\n  parameters: {gamma: 4}\n",
+       {"scene.yaml:15:23: fluid.parameters.gamma: unknown parameter of backend 'static'; "
+        "allowed: diffusion_eps (sadr backends)"}},
+      {"parameter_out_of_the_schema_range",
+       "  backend: static\n",
+       "  backend: tdpd\n  parameters: {lambda: 1.5}\n",
+       {"scene.yaml:14:24: fluid.parameters.lambda: 1.5 is out of range; allowed: [0, 1] "
+        "[dimensionless] (Groot-Warren velocity-prediction factor)"}},
       {"species_name_reused",
        "  - name: B\n",
        "  - name: A\n",

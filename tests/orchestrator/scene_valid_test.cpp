@@ -66,6 +66,14 @@ TEST(SceneValid, DirichletValueSetsInitialCountsOfWallParticles) {
   EXPECT_EQ(s.deterministic_species_count(), 1U);
 }
 
+// fluid.kernel takes the backend's kernels (its schema entry); the default is its first.
+TEST(SceneValid, KernelFromTheBackendsSchema) {
+  EXPECT_EQ(parse_scene(test::kBaseScene, "scene.yaml").fluid.kernel, "lucy");
+  const std::string text = test::replace_once(test::kBaseScene, "  smoothing_length: 0.45\n",
+                                              "  smoothing_length: 0.45\n  kernel: wendland_c2\n");
+  EXPECT_EQ(parse_scene(text, "scene.yaml").fluid.kernel, "wendland_c2");
+}
+
 TEST(SceneValid, OutputTimesDefaultToStartAndEnd) {
   const Scene s = parse_scene(kBaseScene, "scene.yaml");
   EXPECT_EQ(s.output.times, (std::vector<double>{0.0, 1.0}));

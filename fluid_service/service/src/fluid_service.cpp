@@ -86,7 +86,7 @@ void FluidServiceHandler::handle_typed(const v1::FluidRequest& request, v1::Flui
   }
 }
 
-void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
+void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& /*rep: status only*/) {
   const ParticleState particles = wire::from_proto(req.particles(), "init.particles");
   FluidModel model = model_from_proto(req.model(), particles.size());
   auto backend = registry_.create(req.model().backend());
@@ -119,11 +119,6 @@ void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
     inflows.push_back({s, wire::from_proto(in, particles.dimension, where)});
   }
   backend->initialize(model, particles, conc);
-  const Capabilities caps = backend->capabilities();
-  if (caps.moves_particles) rep.add_capabilities("moves_particles");
-  if (caps.transports_species) rep.add_capabilities("transports_species");
-  if (caps.thermal_noise) rep.add_capabilities("thermal_noise");
-  if (caps.exact_restart) rep.add_capabilities("exact_restart");
   backend_ = std::move(backend);
   model_ = std::move(model);
   n_particles_ = particles.size();

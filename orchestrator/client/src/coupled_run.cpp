@@ -122,9 +122,7 @@ class CoupledRun {
   void init_services() {
     ScopedTimer timer(manifest_.timings_s, "init");
     if (fluid_) {
-      const auto rep = fluid_->init(make_fluid_init(scene_, plan_, seed_));
-      log::debug("fluid_service ready: stable dt ", rep.stable_time_step(), " (",
-                 rep.limiting_criterion(), ")");
+      (void)fluid_->init(make_fluid_init(scene_, plan_, seed_));
     }
     if (ssa_) ssa_->init(make_ssa_init(scene_, plan_, seed_, scene_.particles));
   }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "sadr/fluid/backend_schema.hpp"
 #include "sadr/orchestrator/diagnostics.hpp"
 #include "sadr/orchestrator/splitting.hpp"
 
@@ -19,7 +20,11 @@ std::string join(const std::vector<std::string>& v) {
 
 Plan make_plan(const Scene& scene) {
   Plan p;
-  const bool is_static = scene.fluid.backend == "static";
+  // What the backend does, from its schema entry (no backend name is spelled here; the scene
+  // loader refused unknown names, a hand-made Scene with one is taken as moving particles).
+  const auto* backend = sadr::fluid::schema::find(scene.fluid.backend);
+  const bool moving = !backend || backend->capabilities.moves_particles;
+  const std::string who = "backend '" + scene.fluid.backend + "'";
   std::vector<std::string> deterministic;
   for (const auto& sp : scene.species) {
     if (sp.stochastic) {
@@ -33,18 +38,17 @@ Plan make_plan(const Scene& scene) {
   p.ssa_service = !p.ssa_species.empty();
   if (!p.ssa_service) p.skipped.push_back("ssa_service: not launched (no stochastic species)");
 
-  p.fluid_stepping = !is_static || !deterministic.empty();
+  p.fluid_stepping = moving || !deterministic.empty();
   p.fluid_service = p.fluid_stepping;
-  if (is_static && deterministic.empty()) {
-    p.skipped.push_back(
-        "fluid_service: not launched (static backend and no deterministic species; particles "
-        "come from the scene)");
-  } else if (is_static) {
-    p.skipped.push_back(
-        "particle motion: none (static backend; the fluid only integrates the deterministic "
-        "species)");
+  if (!moving && deterministic.empty()) {
+    p.skipped.push_back("fluid_service: not launched (" + who +
+                        " moves no particles and there are no deterministic species; particles "
+                        "come from the scene)");
+  } else if (!moving) {
+    p.skipped.push_back("particle motion: none (" + who +
+                        " moves no particles; the fluid only integrates the deterministic "
+                        "species)");
   }
-  const bool moving = !is_static;
   p.graph_rebuild_each_step = p.ssa_service && moving;
   p.particles_to_ssa_each_step = p.graph_rebuild_each_step;
   if (p.ssa_service && !moving) {

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
-// Scene section "fluid": backend name and its parameters.
+// Scene section "fluid": backend name and its parameters, validated from the backend schema
+// (sadr/fluid/backend_schema.hpp): no backend name is spelled here.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <span>
 #include <string>
 
+#include "sadr/fluid/backend_schema.hpp"
 #include "scene_parts.hpp"
 
 namespace sadr::orchestrator::detail {
@@ -20,8 +23,6 @@ constexpr std::array<std::string_view, 8> kOpenKeys{
 constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 constexpr std::array<std::string_view, 2> kProfiles{"uniform", "parabolic"};
 constexpr std::string_view kOpenPrefix = "open_boundary.";
-constexpr std::array<std::string_view, 3> kBackends{"sdpd", "static", "tdpd"};
-constexpr std::array<std::string_view, 1> kKernels{"lucy"};
 constexpr std::array<std::string_view, 2> kDensityModes{"continuity", "summation"};
 constexpr std::array<std::string_view, 4> kBoussinesqKeys{"species", "coefficient", "reference",
                                                           "direction"};
@@ -65,17 +66,72 @@ int axis_index(std::string_view name) {
   return name == "x" ? 0 : name == "y" ? 1 : 2;
 }
 
+namespace schema = sadr::fluid::schema;
+
+std::vector<std::string_view> views(const std::vector<std::string>& v) {
+  return {v.begin(), v.end()};
+}
+
+/// "backend sdpd" / "backends a, b": the backends with a capability, for "allowed:" messages.
+std::string backends_with(bool (*has)(const schema::Backend&)) {
+  std::vector<std::string> names;
+  for (const auto& b : schema::backends()) {
+    if (has(b)) names.push_back(b.name);
+  }
+  std::string s = names.size() == 1 ? "backend " : "backends ";
+  for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
+  return s;
+}
+
+/// fluid.parameters against the backend's parameter schema (name and range).
+void read_parameters(SceneContext& ctx, const Field& f, const schema::Backend* backend) {
+  YamlReader& r = ctx.reader;
+  const Field params = YamlReader::child(f, "parameters");
+  if (!YamlReader::present(params)) return;
+  if (!params.node.IsMap()) {
+    r.error(params, "expected a map of name: number (backend-specific parameters)");
+    return;
+  }
+  for (const auto& kv : params.node) {
+    const std::string key = kv.first.Scalar();
+    if (key.rfind(kOpenPrefix, 0) == 0) {
+      r.error(YamlReader::child(params, key),
+              "reserved name; allowed: the map fluid.open_boundary (docs/scene-format.md)");
+      continue;
+    }
+    const schema::Parameter* spec = backend ? backend->parameter(key) : nullptr;
+    if (backend && !spec) {
+      std::string known;
+      for (const auto& p : backend->parameters) known += (known.empty() ? "" : ", ") + p.name;
+      r.error(YamlReader::child(params, key),
+              "unknown parameter of backend '" + backend->name + "'; allowed: " +
+                  (known.empty() ? std::string("none") : known) + " (sadr backends)");
+      continue;
+    }
+    const auto v = r.number(params, key, Bound::kAny, spec ? spec->unit : "", true);
+    std::string why;
+    if (v && spec && !spec->allows(*v, why)) {
+      r.error(YamlReader::child(params, key), num(*v) + " is out of range; allowed: " + why + " [" +
+                                                  spec->unit + "] (" + spec->doc + ")");
+      continue;
+    }
+    if (v) ctx.scene.fluid.parameters[key] = *v;
+  }
+}
+
 /// fluid.open_boundary -> parameters["open_boundary.*"] (model_convert.cpp in fluid_service
 /// reads them back into FluidModel::OpenBoundary).
-void read_open_boundary(SceneContext& ctx, const Field& fluid, bool sdpd) {
+void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
   YamlReader& r = ctx.reader;
   const Field ob = YamlReader::child(fluid, "open_boundary");
   if (!YamlReader::present(ob) || !r.expect_map(ob, kOpenKeys)) return;
   ctx.open_boundary = ob;
   const auto backend = ctx.scene.fluid.backend;
-  if (!sdpd) {
-    r.error(ob, std::string("backend '") + backend +
-                    "' has no open boundaries; allowed: backend sdpd (or remove open_boundary)");
+  if (!allowed) {
+    r.error(ob, std::string("backend '") + backend + "' has no open boundaries; allowed: " +
+                    backends_with(
+                        [](const schema::Backend& b) { return b.capabilities.open_boundaries; }) +
+                    " (or remove open_boundary)");
   }
   if (!ctx.dimension_ok) return;
   const int d = ctx.scene.box.dimension;
@@ -224,8 +280,14 @@ void read_fluid(SceneContext& ctx, const Field& root) {
     return;
   }
   if (!r.expect_map(f, kFluidKeys)) return;
-  const auto backend = r.choice(f, "backend", kBackends, true, "fluid backend");
+  std::vector<std::string> names;
+  for (const auto& b : schema::backends()) names.push_back(b.name);
+  const auto known = views(names);
+  const auto backend = r.choice(f, "backend", known, true, "fluid backend");
   if (backend) fl.backend = *backend;
+  // (an unknown backend: no follow-up errors)
+  const schema::Backend* spec = backend ? schema::find(*backend) : nullptr;
+  auto required = [&](std::string_view key) { return spec && spec->needs(key); };
   const auto h = r.number(f, "smoothing_length", Bound::kPositive, "length", false);
   ctx.h_over_dx = r.number(f, "h_over_dx", Bound::kPositive, "dimensionless", false);
   if (h && ctx.h_over_dx) {
@@ -239,14 +301,19 @@ void read_fluid(SceneContext& ctx, const Field& root) {
     r.error(YamlReader::child(f, "smoothing_length"),
             "missing; required: smoothing_length (a number > 0 [length]) or h_over_dx (> 0)");
   }
-  if (auto k = r.choice(f, "kernel", kKernels, false, "kernel")) fl.kernel = *k;
+  if (spec) {  // the backend's kernels, its first the default
+    const auto kernels = views(spec->capabilities.kernels);
+    fl.kernel = spec->capabilities.kernels.front();
+    if (auto k = r.choice(f, "kernel", kernels, false, "kernel")) fl.kernel = *k;
+  }
   fl.reference_density =
       r.number_or(f, "reference_density", 1.0, Bound::kPositive, "mass/length^d");
-  const bool sdpd = backend && *backend == "sdpd";  // unknown backend: no follow-up errors
-  fl.sound_speed = r.number(f, "sound_speed", Bound::kPositive, "length/time", sdpd).value_or(0);
-  fl.shear_viscosity =
-      r.number(f, "shear_viscosity", Bound::kNonNegative, "mass/(length^(d-2) time)", sdpd)
+  fl.sound_speed =
+      r.number(f, "sound_speed", Bound::kPositive, "length/time", required("sound_speed"))
           .value_or(0);
+  fl.shear_viscosity = r.number(f, "shear_viscosity", Bound::kNonNegative,
+                                "mass/(length^(d-2) time)", required("shear_viscosity"))
+                           .value_or(0);
   fl.temperature = r.number_or(f, "temperature", 0.0, Bound::kNonNegative, "energy");
   if (ctx.dimension_ok) {
     if (auto g = r.vector(f, "gravity", ctx.scene.box.dimension, "length/time^2", false)) {
@@ -258,24 +325,9 @@ void read_fluid(SceneContext& ctx, const Field& root) {
   }
   fl.max_time_step = r.number_or(f, "max_time_step", 0.0, Bound::kNonNegative, "time");
   fl.force_time_step = r.boolean(f, "force_time_step", false).value_or(false);
-  const Field params = YamlReader::child(f, "parameters");
-  if (YamlReader::present(params)) {
-    if (!params.node.IsMap()) {
-      r.error(params, "expected a map of name: number (backend-specific parameters)");
-    } else {
-      for (const auto& kv : params.node) {
-        const std::string key = kv.first.Scalar();
-        if (key.rfind(kOpenPrefix, 0) == 0) {
-          r.error(YamlReader::child(params, key),
-                  "reserved name; allowed: the map fluid.open_boundary (docs/scene-format.md)");
-          continue;
-        }
-        if (auto v = r.number(params, key, Bound::kAny, "", true)) fl.parameters[key] = *v;
-      }
-    }
-  }
+  read_parameters(ctx, f, spec);
   read_boussinesq(ctx, f);
-  read_open_boundary(ctx, f, sdpd);
+  read_open_boundary(ctx, f, !spec || spec->capabilities.open_boundaries);
 }
 
 }  // namespace sadr::orchestrator::detail

@@ -3,6 +3,7 @@
 
 #include <array>
 
+#include "sadr/fluid/backend_schema.hpp"
 #include "sadr/orchestrator/diagnostics.hpp"
 
 namespace sadr::orchestrator {
@@ -49,11 +50,13 @@ std::vector<std::string> describe_scene(const Scene& s) {
     out.push_back("region " + r.name + ": " + std::string(to_string(r.shape)) + ", " +
                   std::to_string(r.particles.size()) + " particles");
   }
+  const auto* backend = sadr::fluid::schema::find(s.fluid.backend);  // c0, eta if it needs them
+  const bool sph = backend && backend->needs("sound_speed");
   out.push_back("fluid: " + s.fluid.backend +
                 ", rho0 = " + format_number(s.fluid.reference_density) +
-                (s.fluid.backend == "sdpd" ? ", c0 = " + format_number(s.fluid.sound_speed) +
-                                                 ", eta = " + format_number(s.fluid.shear_viscosity)
-                                           : std::string()) +
+                (sph ? ", c0 = " + format_number(s.fluid.sound_speed) +
+                           ", eta = " + format_number(s.fluid.shear_viscosity)
+                     : std::string()) +
                 ", kT = " + format_number(s.fluid.temperature));
   for (const auto& sp : s.species) {
     out.push_back("species " + sp.name + ": " + (sp.stochastic ? "stochastic" : "deterministic") +

@@ -3,8 +3,9 @@
 /// What a run needs, decided from the scene alone (printed at start and
 /// stored in the run manifest). Skip rules:
 ///  - no ssa_service without stochastic species;
-///  - no fluid stepping for the static backend (the SSA graph is built once);
-///    no fluid_service at all when it is static and has no deterministic species;
+///  - no fluid stepping for a backend that moves no particles (its schema entry; the SSA
+///    graph is built once);
+///    no fluid_service at all when it also has no deterministic species;
 ///  - no thermal noise at k_B T = 0 (no random numbers drawn by the fluid);
 ///  - no back-transfer of copy numbers to the fluid unless a fluid term depends
 ///    on a stochastic species (Boussinesq);
@@ -28,7 +29,7 @@ namespace sadr::orchestrator {
 struct Plan {
   std::string fluid_backend;                ///< backend name from the scene (sdpd, static, tdpd)
   bool fluid_service = true;                ///< launch fluid_service
-  bool fluid_stepping = true;               ///< advance the fluid every coupling step (not static)
+  bool fluid_stepping = true;               ///< advance the fluid every coupling step (particles move, or deterministic species)
   bool ssa_service = false;                 ///< launch ssa_service
   bool graph_rebuild_each_step = false;     ///< particles move: the SSA graph is rebuilt every step
   bool particles_to_ssa_each_step = false;  ///< positions/densities/masses fluid -> ssa per step

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+// The "sdpd" entry of the backend schema (sadr/fluid/backend_schema.hpp): plain data, linked by
+// the orchestrator without the numerics.
+#include <limits>
+
+#include "sadr/fluid/backend_schema.hpp"
+
+namespace sadr::fluid::schema {
+
+Backend sdpd_backend() {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Backend b;
+  b.name = "sdpd";
+  b.summary =
+      "smoothed dissipative particle dynamics (Espanol & Revenga 2003) with deterministic "
+      "reaction-diffusion; docs/fluid-core.md";
+  b.capabilities = {true, true, true, true, {"stationary", "morris"}, {"lucy", "wendland_c2"}};
+  b.required = {"sound_speed", "shear_viscosity"};
+  b.parameters = {
+      {"density_diffusion", "dimensionless", 0.1, 0.0, inf, false, false,
+       "Molteni-Colagrossi density diffusion delta (continuity density)"},
+      {"diffusion_eps", "dimensionless", 0.01, 0.0, inf, false, false,
+       "eps in r^2/(r^2 + eps h^2) of the species Laplacian (as the SSA graph)"},
+      {"density_band", "dimensionless", 0.5, 0.0, 1.0, false, true,
+       "blow-up band: |rho/rho_0 - 1| must stay below it"},
+      {"neighbor_skin", "dimensionless", 0.15, 0.0, 1.0, false, false,
+       "Verlet skin as a fraction of h"},
+  };
+  return b;
+}
+
+}  // namespace sadr::fluid::schema

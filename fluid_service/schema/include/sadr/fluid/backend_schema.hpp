@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+/// \file backend_schema.hpp
+/// What each fluid backend is and takes, as data: its name, capabilities and a typed schema of
+/// its `fluid.parameters`. The scene loader validates `fluid:` from it, the plan decides from it,
+/// `sadr backends` prints it and docs/scene-format.md's backend tables are checked against it
+/// (tests/fluid/backend_schema_test.cpp). Plain C++ (no numerics, no ZeroMQ, no protobuf), so
+/// the orchestrator links it without the fluid code. Each backend's entry lives in its own folder
+/// (`backends/<name>/<name>_schema.cpp`); the list is `src/backend_schema.cpp`.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sadr::fluid::schema {
+
+/// One number in `fluid.parameters`.
+struct Parameter {
+  std::string name;
+  std::string unit;  ///< "dimensionless", "length", ... (docs/scene-format.md, units)
+  double default_value = 0.0;
+  double min = 0.0;  ///< allowed range [min, max] (+-inf: unbounded)
+  double max = 0.0;
+  bool whole = false;          ///< a whole number (flags, axes)
+  bool open_interval = false;  ///< (min, max) instead of [min, max]
+  std::string doc;             ///< one line
+  /// Whether v is allowed; else `why` says the range ("[0, 1]", "a whole number in [-1, 2]").
+  [[nodiscard]] bool allows(double v, std::string& why) const;
+};
+
+struct Capabilities {
+  bool moves_particles = false;          ///< positions evolve (else: the SSA graph is built once)
+  bool transports_species = false;       ///< integrates deterministic species
+  bool thermal_noise = false;            ///< honours fluid.temperature > 0
+  bool open_boundaries = false;          ///< fluid.open_boundary
+  std::vector<std::string> wall_models;  ///< fluid.wall_model values (first: the default)
+  std::vector<std::string> kernels;      ///< fluid.kernel values (first: the default)
+};
+
+struct Backend {
+  std::string name;
+  std::string summary;  ///< one line
+  Capabilities capabilities;
+  /// Scene keys of `fluid:` this backend needs (e.g. sound_speed).
+  std::vector<std::string> required;
+  std::vector<Parameter> parameters;
+  [[nodiscard]] const Parameter* parameter(std::string_view n) const;
+  /// Whether `key` is in `required`.
+  [[nodiscard]] bool needs(std::string_view key) const;
+};
+
+/// Every backend, in the order of the registry list.
+[[nodiscard]] const std::vector<Backend>& backends();
+/// The backend called `name`, or nullptr.
+[[nodiscard]] const Backend* find(std::string_view name);
+/// "sdpd, static, tdpd".
+[[nodiscard]] std::string names();
+/// The parameter table of one backend as Markdown (the rows of docs/scene-format.md).
+[[nodiscard]] std::string markdown_parameters(const Backend& b);
+/// The capability table of all backends as Markdown.
+[[nodiscard]] std::string markdown_capabilities();
+/// `sadr backends`: every backend with its capabilities and parameters, plain text.
+[[nodiscard]] std::string describe();
+
+/// The entries (one per backend folder).
+Backend sdpd_backend();
+Backend static_backend();
+Backend tdpd_backend();
+
+}  // namespace sadr::fluid::schema

@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/fluid/backend_schema.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace sadr::fluid::schema {
+
+namespace {
+std::string num(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+std::string range(const Parameter& p) {
+  const bool lo = std::isfinite(p.min), hi = std::isfinite(p.max);
+  std::string r = p.whole ? "a whole number, " : "";
+  if (lo && hi) {
+    r.append(p.open_interval ? "(" : "[").append(num(p.min)).append(", ").append(num(p.max));
+    r.append(p.open_interval ? ")" : "]");
+  } else if (lo) {
+    r.append(p.open_interval ? "> " : ">= ").append(num(p.min));
+  } else if (hi) {
+    r.append(p.open_interval ? "< " : "<= ").append(num(p.max));
+  } else {
+    r.append("any finite number");
+  }
+  return r;
+}
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s.empty() ? "-" : s;
+}
+std::string yes(bool b) {
+  return b ? "yes" : "no";
+}
+}  // namespace
+
+bool Parameter::allows(double v, std::string& why) const {
+  const bool inside = open_interval ? v > min && v < max : v >= min && v <= max;
+  const bool ok = std::isfinite(v) && inside && (!whole || v == std::floor(v));
+  if (!ok) why = range(*this);
+  return ok;
+}
+
+const Parameter* Backend::parameter(std::string_view n) const {
+  for (const auto& p : parameters) {
+    if (p.name == n) return &p;
+  }
+  return nullptr;
+}
+
+bool Backend::needs(std::string_view key) const {
+  for (const auto& r : required) {
+    if (r == key) return true;
+  }
+  return false;
+}
+
+const std::vector<Backend>& backends() {
+  // The registry list (fluid_service/backends/registry.cpp holds the factories in this order).
+  static const std::vector<Backend> list{sdpd_backend(), static_backend(), tdpd_backend()};
+  return list;
+}
+
+const Backend* find(std::string_view name) {
+  for (const auto& b : backends()) {
+    if (b.name == name) return &b;
+  }
+  return nullptr;
+}
+
+std::string names() {
+  std::vector<std::string> v;
+  for (const auto& b : backends()) v.push_back(b.name);
+  return join(v);
+}
+
+std::string markdown_parameters(const Backend& b) {
+  std::string s = "| parameter | unit | default | allowed | meaning |\n|---|---|---|---|---|\n";
+  for (const auto& p : b.parameters) {
+    s += "| `" + p.name + "` | " + p.unit + " | " + num(p.default_value) + " | " + range(p) +
+         " | " + p.doc + " |\n";
+  }
+  if (b.parameters.empty()) s += "| (none) | | | | |\n";
+  return s;
+}
+
+std::string markdown_capabilities() {
+  std::string s =
+      "| backend | moves particles | transports species | thermal noise | open boundaries | "
+      "wall models | kernels | requires |\n|---|---|---|---|---|---|---|---|\n";
+  for (const auto& b : backends()) {
+    const auto& c = b.capabilities;
+    s += "| `" + b.name + "` | " + yes(c.moves_particles) + " | " + yes(c.transports_species) +
+         " | " + yes(c.thermal_noise) + " | " + yes(c.open_boundaries) + " | " +
+         join(c.wall_models) + " | " + join(c.kernels) + " | " + join(b.required) + " |\n";
+  }
+  return s;
+}
+
+std::string describe() {
+  std::string s;
+  for (const auto& b : backends()) {
+    const auto& c = b.capabilities;
+    s += b.name + ": " + b.summary + "\n";
+    s += "  moves particles: " + yes(c.moves_particles) +
+         ", transports species: " + yes(c.transports_species) +
+         ", thermal noise: " + yes(c.thermal_noise) +
+         ", open boundaries: " + yes(c.open_boundaries) + "\n";
+    s += "  wall models: " + join(c.wall_models) + "; kernels: " + join(c.kernels) +
+         "; requires: " + join(b.required) + "\n";
+    s += "  parameters (fluid.parameters):" + std::string(b.parameters.empty() ? " none\n" : "\n");
+    for (const auto& p : b.parameters) {
+      s += "    " + p.name + " [" + p.unit + "] default " + num(p.default_value) + ", " + range(p) +
+           ": " + p.doc + "\n";
+    }
+  }
+  return s;
+}
+
+}  // namespace sadr::fluid::schema
