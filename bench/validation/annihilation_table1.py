@@ -70,7 +70,7 @@ def reference(refs, np_, nb, t="inf"):
 
 
 def realization_errors(sadr, np_, nb, realizations, end=4.0, seed=2019, refs_path=None,
-                       subsets=(10, 30, 100)):
+                       subsets=(2, 3, 5, 10, 20, 30, 50, 100)):
     """One `sadr run -r R` of the Table 1 scene; returns the paper metric of the
     ensemble mean over the first r realizations for each r in `subsets` (<= R),
     of one realization (r = 1), the CPU time of the whole run (sadr + services,

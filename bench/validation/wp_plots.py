@@ -40,9 +40,18 @@ def ssa_points(d, np_):
     return out
 
 
-def cheapest_at(points, target):
-    ok = [c for c, e in points if e <= target]
+def cheapest_at(points, target, noise=None):
+    """Least cost whose error (and, for an ensemble, whose noise level, the expected
+    error from R realizations: one lucky draw does not count) is <= target."""
+    ok = [c for k, (c, e) in enumerate(points)
+          if e <= target and (noise is None or noise[k] <= target)]
     return min(ok) if ok else None
+
+
+def ssa_noise(d, np_):
+    """{(N_b, t_end): [noise level of the mean of r, ...]} in the order of ssa_points()."""
+    return {(c["N_b"], c["end"]): [v for _, v in sorted(c["noise"].items())]
+            for c in d["ssa"] if c["Np"] == np_}
 
 
 def make_all(d, figs, paper_sdpd, paper_ssa, paper_ssa_one, paper_cost_one):
