@@ -9,9 +9,7 @@
 #pragma once
 
 #include "sadr/fluid/backend_base.hpp"
-#include "sadr/fluid/neighbor_list.hpp"
-#include "sadr/fluid/species_transport.hpp"
-#include "sadr/fluid/stability.hpp"
+#include "sadr/fluid/species_operator.hpp"
 
 namespace sadr::fluid {
 
@@ -30,22 +28,16 @@ class StaticBackend final : public BackendBase {
   void write_state(ParticleState& out) const override { out = state_; }
   std::vector<std::vector<double>>& fields() override { return c_; }
   const std::vector<std::vector<double>>& fields() const override { return c_; }
-  const SpeciesTransport& transport() const override { return species_; }
+  const SpeciesTransport& transport() const override { return species_.transport(); }
   std::uint32_t state_version() const override { return 1; }
   void save_state(BlobWriter& w) const override;
   void restore_state(BlobReader& r, std::uint32_t version) override;
 
  private:
-  void rates(const std::vector<std::vector<double>>& c, std::vector<std::vector<double>>& dc) const;
-
   FluidModel model_;
   ParticleState state_;
-  std::vector<std::vector<double>> c_, ctmp_, dc0_, dc1_;
-  NeighborList nlist_;
-  std::vector<double> k_;    ///< DiffusionTerm coefficient per list entry [1/length^2]
-  std::vector<double> xij_;  ///< minimum-image x_i - x_j per list entry (3 per entry)
-  double max_k_sum_ = 0;
-  SpeciesTransport species_;
+  std::vector<std::vector<double>> c_;
+  SpeciesOperator species_;  ///< built once: the particles never move
   double time_ = 0;
 };
 
