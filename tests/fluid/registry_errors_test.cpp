@@ -38,7 +38,7 @@ FluidModel small_model(ParticleState& p) {
 
 TEST(Registry, BuiltinNamesAndCreation) {
   const auto r = builtin();
-  EXPECT_EQ(r.names(), (std::vector<std::string>{"sdpd", "static", "tdpd"}));
+  EXPECT_EQ(r.names(), (std::vector<std::string>{"prescribed", "sdpd", "static", "tdpd"}));
   EXPECT_EQ(r.create("sdpd")->name(), "sdpd");
   EXPECT_EQ(r.create("static")->name(), "static");
   EXPECT_TRUE(r.create("sdpd")->capabilities().moves_particles);
@@ -53,7 +53,7 @@ TEST(Registry, UnknownNameListsKnownOnes) {
   } catch (const InvalidArgument& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("lbm"), std::string::npos);
-    EXPECT_NE(msg.find("sdpd, static, tdpd"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("prescribed, sdpd, static, tdpd"), std::string::npos) << msg;
   }
 }
 

@@ -79,7 +79,7 @@ const std::vector<MalformedCase>& cases() {
        "  backend: static\n",
        "  backend: sdp\n",
        {"scene.yaml:13:12: fluid.backend: unknown fluid backend 'sdp'; did you mean 'sdpd'? "
-        "(allowed: sdpd, static, tdpd)"}},
+        "(allowed: prescribed, sdpd, static, tdpd)"}},
       // The backend schema decides (sadr/fluid/backend_schema.hpp): kernels, parameters.
       {"kernel_the_backend_lacks",
        "  backend: static\n",

@@ -60,8 +60,9 @@ bool Backend::needs(std::string_view key) const {
 }
 
 const std::vector<Backend>& backends() {
-  // The registry list (fluid_service/backends/registry.cpp holds the factories in this order).
-  static const std::vector<Backend> list{sdpd_backend(), static_backend(), tdpd_backend()};
+  // The registry list (fluid_service/backends/registry.cpp holds the factories), by name.
+  static const std::vector<Backend> list{prescribed_backend(), sdpd_backend(), static_backend(),
+                                         tdpd_backend()};
   return list;
 }
 

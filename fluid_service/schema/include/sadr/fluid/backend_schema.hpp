@@ -49,11 +49,11 @@ struct Backend {
   [[nodiscard]] bool needs(std::string_view key) const;
 };
 
-/// Every backend, in the order of the registry list.
+/// Every backend, by name (the registry's order).
 [[nodiscard]] const std::vector<Backend>& backends();
 /// The backend called `name`, or nullptr.
 [[nodiscard]] const Backend* find(std::string_view name);
-/// "sdpd, static, tdpd".
+/// "prescribed, sdpd, static, tdpd".
 [[nodiscard]] std::string names();
 /// The parameter table of one backend as Markdown (the rows of docs/scene-format.md).
 [[nodiscard]] std::string markdown_parameters(const Backend& b);
@@ -63,6 +63,7 @@ struct Backend {
 [[nodiscard]] std::string describe();
 
 /// The entries (one per backend folder).
+Backend prescribed_backend();
 Backend sdpd_backend();
 Backend static_backend();
 Backend tdpd_backend();
