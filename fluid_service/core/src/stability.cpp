@@ -82,6 +82,7 @@ UniformSubsteps uniform_substeps(const StabilityLimits& limits, double max_time_
   double dt_max = out.limit;
   if (max_time_step > 0.0) {
     if (!force) limits.check(max_time_step);
+    if (force) warn_forced_substep(limits, max_time_step);
     dt_max = force ? max_time_step : std::min(out.limit, max_time_step);
   }
   out.count =

@@ -74,7 +74,7 @@ Substep next_substep(const StabilityLimits& limits, double max_time_step, bool f
 
 /// The uniform rule: the fewest equal sub-steps of `time_step` no longer than the binding limit,
 /// or than min(limit, max_time_step) when max_time_step > 0 (refused through check() unless
-/// `force`, which takes max_time_step as it is).
+/// `force`, which takes max_time_step as it is and warns as next_substep() does).
 struct UniformSubsteps {
   std::uint32_t count = 1;  ///< sub-steps
   double dt = 0.0;          ///< their length [time]
