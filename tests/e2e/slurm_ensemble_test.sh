@@ -11,7 +11,8 @@ slurm_local=${SADR_SLURM_LOCAL:-$src/../shared/tools/slurm-local.sh}
 [ -x "$slurm_local" ] || { echo "slurm-local.sh not found at $slurm_local"; exit 1; }
 work=$(mktemp -d /tmp/sadr-slurm-XXXXXX)
 export SLURM_LOCAL_DIR=$work/slurm
-cleanup() { bash "$slurm_local" down >/dev/null 2>&1 || true; }
+# Stop the daemons before removing $work (it holds the PID files `down` reads).
+cleanup() { bash "$slurm_local" down >/dev/null 2>&1 || true; rm -rf "$work"; }
 trap cleanup EXIT
 bash "$slurm_local" install
 bash "$slurm_local" config
@@ -54,4 +55,3 @@ for f in "$work/local/ensemble/"*.csv; do
   cmp "$f" "$work/cluster/ensemble/$(basename "$f")"
 done
 echo "slurm ensemble == local ensemble ($(ls "$work/local/ensemble" | wc -l) frames)"
-rm -rf "$work"

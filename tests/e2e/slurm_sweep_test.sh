@@ -15,7 +15,9 @@ skip() { echo "SKIPPED (not passed): $*" >&2; exit 77; }
 [ -f "$slurm_local" ] || skip "slurm-local.sh not found at $slurm_local (set SADR_SLURM_LOCAL)"
 work=$(mktemp -d /tmp/sadr-slurm-sweep-XXXXXX)
 export SLURM_LOCAL_DIR=$work/slurm
-cleanup() { bash "$slurm_local" down >/dev/null 2>&1 || true; }
+# Stop the daemons (by the PIDs slurm-local.sh recorded under $work) before
+# removing $work: removed first, the PID files would be gone and the daemons left.
+cleanup() { bash "$slurm_local" down >/dev/null 2>&1 || true; rm -rf "$work"; }
 trap cleanup EXIT
 bash "$slurm_local" install || skip "slurm-wlm/munge could not be installed"
 bash "$slurm_local" config || skip "slurm.conf could not be written"
@@ -85,4 +87,3 @@ for f in $(cd "$work/local" && ls points/*/frame_*.csv observables.csv); do
   cmp "$work/local/$f" "$work/cancel/$f"
 done
 echo "cancelled task reported, resumed alone, aggregates == local's"
-rm -rf "$work"
