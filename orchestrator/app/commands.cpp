@@ -13,9 +13,11 @@
 
 #include "sadr/common/log.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
+#include "sadr/orchestrator/diagnostics.hpp"
 #include "sadr/orchestrator/ensemble_accumulator.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
+#include "sadr/orchestrator/work_estimate.hpp"
 
 namespace sadr::orchestrator {
 namespace fs = std::filesystem;
@@ -47,6 +49,7 @@ bool is_service_failure(const Error& e) {
 }  // namespace
 
 void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
+  if (o.quiet) return;
   std::fprintf(stderr, "sadr: scene '%s' (%zu particles, %zu species, %zu reactions), t_end = %g\n",
                scene.name.c_str(), scene.particles.size(), scene.species.size(),
                scene.reactions.size(), scene.time.end);
@@ -55,6 +58,19 @@ void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
 }
 
 namespace {
+
+/// The work estimate, printed with the plan, then its limits: hard ones always
+/// refuse; soft ones refuse unless --allow-large (then they are warnings).
+void check_work(const Scene& scene, const Plan& plan, const CliOptions& o, const fs::path& out,
+                int realizations, int jobs) {
+  const WorkEstimate e = estimate_work(scene, plan, machine_limits(out), realizations, jobs);
+  if (!o.quiet) {
+    for (const auto& line : e.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
+  }
+  enforce_limits(e, o.allow_large);
+  for (const auto& line : e.soft) log::warn(line, " (allowed by --allow-large)");
+}
+
 
 /// OpenMP threads the fluid will use: --fluid-threads, else OMP_NUM_THREADS (its
 /// first value), else every hardware thread (OpenMP's default).
@@ -86,7 +102,50 @@ fs::path default_output(const Scene& scene) {
   return fs::path("runs") / (scene.name + "-" + compact);
 }
 
+/// Refuses an output path that exists but is not a directory (before anything is written).
+void require_directory_or_absent(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
+    throw InvalidArgument("output '" + dir.string() +
+                          "' exists and is not a directory; allowed: a directory or a new path "
+                          "(--output)");
+  }
+}
+
+/// --stop-at T: finite (the parser checks >= 0) and before the scene's end.
+void check_stop_at(const CliOptions& o, const Scene& scene, double from) {
+  if (o.stop_at < 0) return;
+  if (!(o.stop_at > from) || !(o.stop_at <= scene.time.end)) {
+    throw InvalidArgument("--stop-at " + format_number(o.stop_at) +
+                          " is out of range; allowed: " + format_number(from) +
+                          " < T <= " + format_number(scene.time.end) + " (the scene's time.end)");
+  }
+}
+
+/// The index K of --realization K|env, checked before any folder is created.
+unsigned long long realization_index(const std::string& option) {
+  std::string index = option;
+  if (index == "env") {
+    const char* v = std::getenv("SLURM_ARRAY_TASK_ID");
+    if (!v) v = std::getenv("JOB_COMPLETION_INDEX");
+    if (!v) {
+      throw InvalidArgument(
+          "--realization env: neither SLURM_ARRAY_TASK_ID nor "
+          "JOB_COMPLETION_INDEX is set");
+    }
+    index = v;
+  }
+  char* end = nullptr;
+  const unsigned long long r = std::strtoull(index.c_str(), &end, 10);
+  if (index.empty() || index.size() > 4 || *end != '\0' || index[0] == '-' || index[0] == '+' ||
+      r > 9999) {
+    throw InvalidArgument("--realization '" + index.substr(0, 32) + "' (allowed: 0..9999 or env)");
+  }
+  return r;
+}
+
 void prepare_output(const fs::path& dir, bool force) {
+  require_directory_or_absent(dir);
   if (fs::exists(dir) && !fs::is_empty(dir)) {
     if (!force) {
       throw InvalidArgument("output directory '" + dir.string() +
@@ -166,6 +225,15 @@ int cmd_validate(const CliOptions& o) {
     const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
     decide_overlap(plan, o.overlap, hw, fluid_threads(o, hw), 1);
     print_plan(scene, plan, o);
+    const fs::path out =
+        scene.output.directory.empty() ? fs::path(".") : fs::path(scene.output.directory);
+    const WorkEstimate e = estimate_work(scene, plan, machine_limits(out));
+    for (const auto& line : e.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
+    enforce_limits(e, true);
+    for (const auto& line : e.soft) {
+      std::fprintf(stderr, "%s: warning: %s; sadr run refuses it without --allow-large\n",
+                   o.scene.c_str(), line.c_str());
+    }
     std::printf("%s: valid\n", o.scene.c_str());
     return kExitOk;
   } catch (const std::exception& e) {
@@ -186,41 +254,29 @@ int cmd_run(const CliOptions& o) {
   if (jobs > 1) setenv("OMP_NUM_THREADS", "1", 0);  // one core per realization
   configure_threads_and_overlap(plan, o, jobs);
   print_plan(scene, plan, o);
+  check_stop_at(o, scene, 0.0);
   if (!o.realization.empty() && o.output.empty()) {
     throw InvalidArgument("--realization needs --output DIR (the folder shared by all tasks)");
   }
+  const unsigned long long task = o.realization.empty() ? 0 : realization_index(o.realization);
   const fs::path out = o.output.empty() ? default_output(scene) : fs::path(o.output);
+  check_work(scene, plan, o, out, o.realization.empty() ? r_count : 1, jobs);
   if (o.realization.empty()) {
     prepare_output(out, o.force);
   } else {
+    require_directory_or_absent(out);
     ensure_directory(out);  // shared by the array tasks; each writes only its realization
   }
-  std::fprintf(stderr, "sadr: writing to %s\n", out.string().c_str());
+  if (!o.quiet) std::fprintf(stderr, "sadr: writing to %s\n", out.string().c_str());
 
   if (!o.realization.empty()) {
     // One realization of an ensemble (a cluster array task): DIR/realization_NNNN.
-    std::string index = o.realization;
-    if (index == "env") {
-      const char* v = std::getenv("SLURM_ARRAY_TASK_ID");
-      if (!v) v = std::getenv("JOB_COMPLETION_INDEX");
-      if (!v) {
-        throw InvalidArgument(
-            "--realization env: neither SLURM_ARRAY_TASK_ID nor "
-            "JOB_COMPLETION_INDEX is set");
-      }
-      index = v;
-    }
-    char* end = nullptr;
-    const unsigned long long r = std::strtoull(index.c_str(), &end, 10);
-    if (index.empty() || *end != '\0' || r > 9999) {
-      throw InvalidArgument("--realization '" + index + "' (allowed: 0..9999 or env)");
-    }
     char name[32];
-    std::snprintf(name, sizeof name, "realization_%04llu", r);
+    std::snprintf(name, sizeof name, "realization_%04llu", task);
     RunOptions base;
     base.progress = !o.quiet;
     base.progress_label = std::string(name) + " ";
-    const RunResult res = run_realization(scene, plan, o, r, out / name, nullptr, base);
+    const RunResult res = run_realization(scene, plan, o, task, out / name, nullptr, base);
     if (!res.interrupted) summarize_at_end(out / name, o.quiet);
     return res.interrupted && g_interrupt ? kExitInterrupted : kExitOk;
   }
@@ -324,13 +380,18 @@ int cmd_resume(const CliOptions& o) {
                           ", but that file now has hash " + scene.source_hash +
                           " (the scene changed since the run started)");
   }
+  check_manifest_fits_scene(cp.manifest, scene.time.end, scene.time.coupling_step,
+                            scene.output.times.size(), scene.seed, manifest_path.string());
   Plan plan = make_plan(scene);
   configure_threads_and_overlap(plan, o, 1);
   print_plan(scene, plan, o);
+  check_stop_at(o, scene, cp.manifest.time);
   const fs::path out = o.output.empty() ? run_dir : fs::path(o.output);
-  std::fprintf(stderr, "sadr: resuming realization %llu at t = %g (step %llu) into %s\n",
-               static_cast<unsigned long long>(cp.manifest.realization), cp.manifest.time,
-               static_cast<unsigned long long>(cp.manifest.step_index), out.string().c_str());
+  check_work(scene, plan, o, out, 1, 1);
+  if (!o.quiet)
+    std::fprintf(stderr, "sadr: resuming realization %llu at t = %g (step %llu) into %s\n",
+                 static_cast<unsigned long long>(cp.manifest.realization), cp.manifest.time,
+                 static_cast<unsigned long long>(cp.manifest.step_index), out.string().c_str());
   RunOptions base;
   base.progress = !o.quiet;
   const RunResult r = run_realization(scene, plan, o, cp.manifest.realization, out, &cp, base);

@@ -34,11 +34,12 @@ struct CliOptions {
   /// (off: --no-shared-memory).
   bool shared_geometry = true;
   int realizations = 1;
-  int jobs = 0;            ///< parallel realizations (0 = number of cores)
-  int restarts = 0;        ///< --restart-on-failure N
-  double timeout_s = 120;  ///< per service call
-  double stop_at = -1;     ///< checkpoint and stop at this simulated time (< 0: never)
-  bool quiet = false;      ///< no progress display
+  int jobs = 0;              ///< parallel realizations (0 = number of cores)
+  int restarts = 0;          ///< --restart-on-failure N
+  double timeout_s = 120;    ///< per service call
+  double stop_at = -1;       ///< checkpoint and stop at this simulated time (< 0: never)
+  bool quiet = false;        ///< no progress display, plan or info lines
+  bool allow_large = false;  ///< --allow-large: lift the soft limits of the work estimate
   /// --overlap / --no-overlap: SSA step k at the same time as fluid step k + 1.
   OverlapRequest overlap = OverlapRequest::kAuto;
   int fluid_threads = 0;  ///< --fluid-threads (0 = OpenMP's default); SADR_FLUID_THREADS

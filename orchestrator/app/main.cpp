@@ -2,12 +2,32 @@
 // sadr: the orchestrator CLI. Parses the command line and hands over to commands.cpp.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include "commands.hpp"
+
+#include "sadr/common/build_info.hpp"
 #include "sadr/common/log.hpp"
 #include "sadr/common/openmp_env.hpp"
 #include "sadr/common/version.hpp"
 
 using namespace sadr::orchestrator;
+
+namespace {
+/// A finite number in [lo, hi], with a short message (CLI11's own ranges print
+/// the limits of double with 300 digits).
+CLI::Validator finite_range(double lo, double hi, const std::string& what) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi) {
+          return "'" + text.substr(0, 32) + "' is out of range; allowed: " + what;
+        }
+        return {};
+      },
+      what);
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   sadr::ensure_passive_openmp_wait(argv);  // see openmp_env.hpp
@@ -31,6 +51,7 @@ int main(int argc, char** argv) {
       "4 numerical failure, 5 I/O failure, 130 interrupted (checkpoint written).\n"
       "Scene format: docs/scene-format.md. Outputs: <output>/run.json, frames/,\n"
       "<name>.pvd (ParaView), checkpoint/, ensemble/ (with --realizations)."};
+  app.set_version_flag("--version", std::string("sadr ") + sadr::kBuildVersion);
   app.require_subcommand(1);
   CliOptions o;
   std::string mode = "processes", level = "info";
@@ -48,13 +69,14 @@ int main(int argc, char** argv) {
                   "send the per-step particle geometry inline in the messages instead of "
                   "through a shared-memory segment (the default for services launched here)");
     cmd->add_option("--timeout", o.timeout_s, "seconds to wait for a service reply")
-        ->check(CLI::PositiveNumber)
+        ->check(finite_range(1e-3, 1e6, "0.001 to 1e6 seconds"))
         ->capture_default_str();
     cmd->add_option("--restart-on-failure", o.restarts,
                     "relaunch services that die or hang, from the last checkpoint, up to N times")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, 1000000));
     cmd->add_option("--stop-at", o.stop_at,
-                    "write a checkpoint and stop at this simulated time (resume later)");
+                    "write a checkpoint and stop at this simulated time (resume later)")
+        ->check(finite_range(0.0, 1e300, "a finite time >= 0 (and <= the scene's time.end)"));
     cmd->add_option("-o,--output", o.output,
                     "output directory (default: output.directory of the scene, else "
                     "runs/<name>-<UTC time>)");
@@ -75,7 +97,12 @@ int main(int argc, char** argv) {
                     "OpenMP threads of ssa_service's graph rebuild (default: OMP_NUM_THREADS, "
                     "else all cores); sets SADR_SSA_THREADS for the services launched here")
         ->check(CLI::Range(1, 4096));
-    cmd->add_flag("-q,--quiet", o.quiet, "no progress display");
+    cmd->add_flag("-q,--quiet", o.quiet,
+                  "no progress display, plan or info lines (warnings and errors only; "
+                  "--log-level overrides)");
+    cmd->add_flag("--allow-large", o.allow_large,
+                  "run a scene whose work estimate is above the soft limits (long runs, "
+                  "large output, more than half the memory; see docs/cli.md)");
     cmd->add_option("--log-level", level, "error|warn|info|debug")
         ->check(CLI::IsMember({"error", "warn", "info", "debug"}));
   };
@@ -97,9 +124,9 @@ int main(int argc, char** argv) {
   run->add_option("-r,--realizations", o.realizations,
                   "independent realizations with seeds derived from the scene seed; each in "
                   "realization_NNNN/, plus per-frame ensemble mean and variance in ensemble/")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 10000));
   run->add_option("-j,--jobs", o.jobs, "realizations run at once (default: number of cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 10000));
   run->add_flag("--force", o.force, "overwrite a non-empty output directory");
   run->add_option("--realization", o.realization,
                   "run only realization K (0-based) into OUTPUT/realization_K; 'env' takes K "
@@ -169,6 +196,7 @@ int main(int argc, char** argv) {
     const int rc = app.exit(e);
     return rc == 0 ? kExitOk : kExitUsage;
   }
+  if (o.quiet && level == "info") level = "warn";
   if (level == "error") sadr::log::set_level(sadr::log::Level::kError);
   if (level == "warn") sadr::log::set_level(sadr::log::Level::kWarn);
   if (level == "debug") sadr::log::set_level(sadr::log::Level::kDebug);

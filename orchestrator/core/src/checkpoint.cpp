@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/orchestrator/checkpoint.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <set>
 
+#include "sadr/common/build_info.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/orchestrator/hash.hpp"
+#include "sadr/orchestrator/seeds.hpp"
 
 namespace sadr::orchestrator {
 
@@ -94,6 +97,12 @@ CheckpointManifest CheckpointManifest::from_json(const nlohmann::json& j,
     throw InvalidArgument("checkpoint manifest '" + source + "': time_hex '" + hex +
                           "' is not a hexadecimal floating-point number");
   }
+  if (j.contains("time") && (!j.at("time").is_number() || j.at("time").get<double>() != m.time)) {
+    throw InvalidArgument("checkpoint manifest '" + source + "': field 'time' (" +
+                          j.at("time").dump().substr(0, 64) + ") disagrees with 'time_hex' (" +
+                          hex.substr(0, 64) + " = " + format_value(m.time) +
+                          "); the manifest was edited by hand");
+  }
   const auto& blobs = j.contains("blobs") ? j.at("blobs") : nlohmann::json();
   if (!blobs.is_array()) {
     throw InvalidArgument("checkpoint manifest '" + source + "': 'blobs' must be a list");
@@ -125,6 +134,7 @@ CheckpointManifest write_checkpoint(const std::filesystem::path& directory,
     }
   }
   manifest.format_version = kCheckpointFormatVersion;
+  if (manifest.sadr_version.empty()) manifest.sadr_version = kBuildVersion;
   manifest.blobs.clear();
   for (const auto& [service, blob] : blobs) {
     const std::string hash = content_hash(blob.bytes);
@@ -141,6 +151,37 @@ CheckpointManifest write_checkpoint(const std::filesystem::path& directory,
     if (!still_used) std::filesystem::remove(directory / file, ec);
   }
   return manifest;
+}
+
+void check_manifest_fits_scene(const CheckpointManifest& m, double end_time, double coupling_step,
+                               std::size_t output_times, std::uint64_t scene_seed,
+                               const std::string& source) {
+  auto refuse = [&](const std::string& field, const std::string& why) {
+    throw InvalidArgument("checkpoint manifest '" + source + "': field '" + field + "' " + why +
+                          " (a hand-edited or foreign checkpoint; resume from one written by "
+                          "the run)");
+  };
+  const double snap = 1e-9 * std::max(end_time, coupling_step);
+  if (!std::isfinite(m.time) || m.time < 0.0 || m.time > end_time + snap) {
+    refuse("time", "= " + format_value(m.time) + " is outside the scene's [0, " +
+                       format_value(end_time) + "]");
+  }
+  // Steps are at most one coupling step long and are cut at output times.
+  const double fewest = std::floor(m.time / coupling_step * (1.0 - 1e-9));
+  const double most =
+      std::ceil(m.time / coupling_step * (1.0 + 1e-9)) + static_cast<double>(output_times) + 1.0;
+  const auto steps = static_cast<double>(m.step_index);
+  if (steps < fewest || steps > most) {
+    refuse("step_index", "= " + std::to_string(m.step_index) + " does not fit time " +
+                             format_value(m.time) + " with coupling steps of " +
+                             format_value(coupling_step) + " (allowed: " + format_value(fewest) +
+                             " to " + format_value(most) + ")");
+  }
+  if (m.seed != realization_seed(scene_seed, m.realization)) {
+    refuse("seed", "= " + std::to_string(m.seed) + " is not the seed of realization " +
+                       std::to_string(m.realization) + " of this scene (" +
+                       std::to_string(realization_seed(scene_seed, m.realization)) + ")");
+  }
 }
 
 LoadedCheckpoint load_checkpoint(const std::filesystem::path& path,

@@ -6,13 +6,14 @@
 #include <ctime>
 
 #include "sadr/common/status.hpp"
+#include "sadr/common/build_info.hpp"
 #include "sadr/common/version.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/hash.hpp"
 
 namespace sadr::orchestrator {
 
-RunManifest::RunManifest() : sadr_version(kVersion), protocol_version(kProtocolVersion) {
+RunManifest::RunManifest() : sadr_version(kBuildVersion), protocol_version(kProtocolVersion) {
   for (const char* name : {"OMP_NUM_THREADS", "OMP_WAIT_POLICY", "GOMP_SPINCOUNT"}) {
     const char* value = std::getenv(name);
     environment[name] = value ? value : "";

@@ -25,15 +25,35 @@ constexpr std::array<std::string_view, 8> kReactionKeys{
     "name", "equation", "reactants", "products", "rate", "reverse_rate", "regions", "kinds"};
 constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
 
-/// The largest stochastic copy number a scene accepts: 2^53, the largest whole number
-/// below which every whole number is exact in the scene's numbers (doubles). Above it,
-/// the conversion to the SSA's 64-bit counts overflowed (1e19 arrived as -2^63).
-constexpr double kMaxCopyNumber = 9007199254740992.0;
+/// The largest stochastic copy number a scene accepts: kMaxExactCount (2^53,
+/// scene_parts.hpp). Above it, the conversion to the SSA's 64-bit counts
+/// overflowed (1e19 arrived as -2^63).
+constexpr double kMaxCopyNumber = kMaxExactCount;
 const std::string kCopyNumberRange = "a whole number 0 <= n <= 2^53 = 9007199254740992";
 
 /// Copy number for a concentration in particle i: nearest whole number of C V_i.
 double to_count(const ParticleState& p, std::size_t i, double concentration) {
   return std::round(concentration * p.volume(i));
+}
+
+/// Reports a copy number beyond the exact integer range of a double (and of
+/// the SSA's 64-bit counters), or a non-finite concentration; true if it is fine.
+bool check_amount(YamlReader& r, const Field& where, const Species& sp, std::size_t particle,
+                  double value) {
+  if (sp.stochastic && !(value <= kMaxExactCount)) {
+    r.error(where, format_number(value) + " molecules in particle " + std::to_string(particle) +
+                       " of the stochastic species '" + sp.name +
+                       "' is out of range; allowed: at most 2^53 = 9007199254740992 per "
+                       "particle (exact integers)");
+    return false;
+  }
+  if (!sp.stochastic && !std::isfinite(value)) {
+    r.error(where, "the concentration of '" + sp.name + "' in particle " +
+                       std::to_string(particle) + " overflows (" + format_number(value) +
+                       "); allowed: a finite number");
+    return false;
+  }
+  return true;
 }
 
 /// `count_column` / `concentration_column` of an initial entry: per-particle
@@ -87,6 +107,7 @@ bool read_initial_column(SceneContext& ctx, const Field& f, Species& sp, const R
     } else {
       sp.initial[i] = sp.stochastic ? to_count(p, i, v) : v;
     }
+    if (!check_amount(r, cf, sp, i, sp.initial[i])) break;
   }
   if (reported > 5) {
     r.error(cf, ctx.particle_file + ": " + std::to_string(reported - 5) +
@@ -146,12 +167,14 @@ void read_initial(SceneContext& ctx, const Field& sp_field, Species& sp) {
         continue;
       }
     }
+    const Field value_field = YamlReader::child(f, count ? "count" : "concentration");
     for (const std::uint32_t i : rg->particles) {
       if (count) {
         sp.initial[i] = sp.stochastic ? *count : *count / p.volume(i);
       } else {
         sp.initial[i] = sp.stochastic ? to_count(p, i, *conc) : *conc;
       }
+      if (!check_amount(r, value_field, sp, i, sp.initial[i])) break;
     }
   }
 }
@@ -225,6 +248,14 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
     if (!rg) continue;
     b.region = rg->name == kAllRegion ? std::string() : rg->name;
     if (inflow) {  // geometric, re-evaluated on the moving particles by the service
+      if (ctx.particles_ok && sp.stochastic) {
+        std::size_t largest = 0;  // the particle with the largest volume gets the most
+        for (std::size_t i = 1; i < p.size(); ++i) {
+          if (p.volume(i) > p.volume(largest)) largest = i;
+        }
+        check_amount(r, YamlReader::child(f, count ? "count" : "value"), sp, largest,
+                     to_count(p, largest, b.value));
+      }
       sp.boundaries.push_back(b);
       continue;
     }
@@ -248,9 +279,11 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
                         "boundary conditions apply to non-fluid particles");
       }
       if (b.condition == BoundaryCondition::kDirichlet && !sp.initial.empty()) {
+        const Field value_field = YamlReader::child(f, count ? "count" : "value");
         for (const std::uint32_t i : rg->particles) {
           if (p.kind(i) == ParticleKind::kFluid) continue;
           sp.initial[i] = sp.stochastic ? to_count(p, i, b.value) : b.value;
+          if (!check_amount(r, value_field, sp, i, sp.initial[i])) break;
         }
       }
     }

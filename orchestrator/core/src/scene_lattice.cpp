@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "sadr/orchestrator/work_estimate.hpp"
 #include "scene_parts.hpp"
 
 namespace sadr::orchestrator::detail {
@@ -55,6 +56,22 @@ std::vector<double> axis_points(SceneContext& ctx, const Field& where, int axis,
   return x;
 }
 
+/// A lattice whose particles alone (sadr and fluid_service, before any
+/// species) need more memory than the machine has is refused before it is built.
+std::optional<std::string> lattice_memory_refusal(const SceneContext& ctx, double points) {
+  const int d = ctx.scene.box.dimension;
+  const double need =
+      orchestrator_memory(ctx.scene.fluid.backend).at(points) +
+      (ctx.scene.fluid.backend == "static" ? 0.0
+                                           : fluid_memory(ctx.scene.fluid.backend, d).at(points));
+  const MachineLimits m = machine_limits(".");
+  if (need <= m.memory_bytes) return std::nullopt;
+  return format_number(points) + " lattice points need at least " + format_number(need / 1e9) +
+         " GB (sadr and fluid_service, measured bytes per particle), more than the " +
+         m.memory_source + " of " + format_number(m.memory_bytes / 1e9) +
+         " GB; allowed: a coarser spacing";
+}
+
 void build_lattice(SceneContext& ctx, const Field& particles, double dx, double density) {
   YamlReader& r = ctx.reader;
   Scene& s = ctx.scene;
@@ -89,10 +106,35 @@ void build_lattice(SceneContext& ctx, const Field& particles, double dx, double 
       if (ctx.dimension_ok) {
         if (auto v = r.vector(f, "velocity", d, "length/time", false)) rule.velocity = *v;
       }
+      // The fluid backends hold wall particles at rest (no moving walls): a
+      // velocity there would be dropped without a word.
+      if (rule.kind == ParticleKind::kWall &&
+          std::any_of(rule.velocity.begin(), rule.velocity.end(),
+                      [](double v) { return v != 0; })) {
+        r.error(YamlReader::child(f, "velocity"),
+                "a velocity on wall particles is not supported: the fluid backends keep walls "
+                "at rest (no moving walls, so no Couette flow by wall motion); remove it, or "
+                "drive the flow with fluid.gravity or an open boundary");
+      }
       if (rule.region) rules.push_back(rule);
     }
   }
   if (!ctx.geometry_ok) return;
+  // Count the points before making any: a spacing far too fine is refused
+  // with the count (and its memory), not with "no point in any region" or a
+  // failed allocation.
+  double points = 1.0;
+  for (int a = 0; a < d; ++a) points *= std::floor(s.box.length(a) / dx + 1e-9) + 1.0;
+  if (points > kMaxLatticePoints) {
+    r.error(YamlReader::child(particles, "spacing"),
+            format_number(dx) + " gives " + format_number(points) +
+                " lattice points; allowed: at most 5e7 (a coarser spacing)");
+    return;
+  }
+  if (const auto why = lattice_memory_refusal(ctx, points)) {
+    r.error(YamlReader::child(particles, "spacing"), *why);
+    return;
+  }
   std::array<std::vector<double>, 3> axes{std::vector<double>{0.0}, std::vector<double>{0.0},
                                           std::vector<double>{0.0}};
   double total = 1.0;

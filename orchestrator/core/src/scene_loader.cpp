@@ -36,6 +36,40 @@ bool valid_identifier(std::string_view name) {
                      [&](char c) { return alpha(c) || (c >= '0' && c <= '9'); });
 }
 
+std::optional<std::string> invalid_scene_name(std::string_view name) {
+  // The name becomes <output>/<name>.pvd and runs/<name>-<time>: a file name,
+  // never a path (no '/', no leading '.', no "..").
+  constexpr std::size_t kMaxLength = 128;
+  const std::string shown =
+      name.size() > 40 ? std::string(name.substr(0, 40)) + "..." : std::string(name);
+  if (name.empty()) return "the scene name is empty; allowed: 1-128 characters [A-Za-z0-9_.-]";
+  if (name.size() > kMaxLength) {
+    return "'" + shown + "' has " + std::to_string(name.size()) +
+           " characters; allowed: at most 128 (it names the output files)";
+  }
+  const bool chars_ok = std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-' || c == '.';
+  });
+  if (!chars_ok || name.front() == '.' || name.front() == '-') {
+    return "'" + shown +
+           "' is not a valid scene name (it names the output files); allowed: "
+           "[A-Za-z0-9_][A-Za-z0-9_.-]*, no '/' or leading '.'";
+  }
+  return std::nullopt;
+}
+
+std::string scene_name_from_file(const std::filesystem::path& source) {
+  std::string name = source.stem().string().substr(0, 128);
+  for (char& c : name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok) c = '_';
+  }
+  if (name.empty() || name.front() == '.' || name.front() == '-') name.insert(0, "scene");
+  return name;
+}
+
 namespace {
 
 constexpr std::array<std::string_view, 13> kTopKeys{
@@ -99,6 +133,42 @@ void read_box(SceneContext& ctx, const Field& root) {
   ctx.geometry_ok = ok;
 }
 
+/// Lattice neighbours of a particle inside the kernel support h (0 < |k| dx < h).
+std::size_t lattice_neighbours(int d, double h_over_dx) {
+  const int m = static_cast<int>(std::min(h_over_dx, 20.0));
+  std::size_t n = 0;
+  for (int i = -m; i <= m; ++i) {
+    for (int j = d > 1 ? -m : 0; j <= (d > 1 ? m : 0); ++j) {
+      for (int k = d > 2 ? -m : 0; k <= (d > 2 ? m : 0); ++k) {
+        const double r2 = double(i) * i + double(j) * j + double(k) * k;
+        if (r2 > 0 && r2 < h_over_dx * h_over_dx) ++n;
+      }
+    }
+  }
+  return n;
+}
+
+/// A lattice whose kernel support reaches no neighbour: nothing would diffuse
+/// and the SPH sums would see only the particle itself.
+void check_neighbours(SceneContext& ctx, const Field& root) {
+  const Scene& s = ctx.scene;
+  if (!ctx.particles_ok || !(s.lattice_spacing > 0) || !(s.fluid.smoothing_length > 0)) return;
+  const bool diffuses = std::any_of(s.species.begin(), s.species.end(),
+                                    [](const Species& sp) { return sp.diffusivity > 0; });
+  if (s.fluid.backend == "static" && !diffuses) return;
+  const double ratio = s.fluid.smoothing_length / s.lattice_spacing;
+  if (lattice_neighbours(s.box.dimension, ratio * (1.0 - 1e-9)) > 0) return;
+  const Field fluid = YamlReader::child(root, "fluid");
+  const Field hf = YamlReader::present(YamlReader::child(fluid, "h_over_dx"))
+                       ? YamlReader::child(fluid, "h_over_dx")
+                       : YamlReader::child(fluid, "smoothing_length");
+  ctx.reader.error(hf, "h = " + format_number(s.fluid.smoothing_length) + " is " +
+                           format_number(ratio) +
+                           " lattice spacings: particle 0 (and every other) "
+                           "has 0 neighbours within the kernel support, so nothing diffuses and "
+                           "the fluid sees no pressure; allowed: h_over_dx > 1 (typically 2-4)");
+}
+
 void read_ssa(SceneContext& ctx, const Field& root) {
   YamlReader& r = ctx.reader;
   const Field ssa = YamlReader::child(root, "ssa");
@@ -148,7 +218,14 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
 
   SceneContext ctx{reader, scene};
   ctx.base_dir = source_name.parent_path();
-  scene.name = reader.string(root, "name", false).value_or(source_name.stem().string());
+  if (auto name = reader.string(root, "name", false)) {
+    scene.name = *name;
+    if (const auto why = invalid_scene_name(scene.name)) {
+      reader.error(YamlReader::child(root, "name"), *why);
+    }
+  } else {
+    scene.name = scene_name_from_file(source_name);
+  }
   scene.description = reader.string(root, "description", false).value_or("");
   read_box(ctx, root);
   read_fluid(ctx, root);
@@ -159,6 +236,7 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   read_reactions(ctx, root);
   read_time_and_output(ctx, root);
   read_ssa(ctx, root);
+  check_neighbours(ctx, root);
   scene.seed = reader.integer(root, "seed", 0, UINT64_MAX, false).value_or(0);
   if (!ctx.particle_file_bytes.empty()) {
     // A changed particle file is a changed scene (checkpoints refuse it).

@@ -47,6 +47,9 @@ struct SceneContext {
 };
 
 inline constexpr std::string_view kAllRegion = "all";
+/// Largest copy number a scene may give one particle: 2^53, the end of the
+/// exact integer range of a double (the SSA counts in 64-bit integers).
+inline constexpr double kMaxExactCount = 9007199254740992.0;
 
 void read_regions(SceneContext& ctx, const Field& root);
 void read_particles(SceneContext& ctx, const Field& root);
@@ -59,6 +62,10 @@ void read_time_and_output(SceneContext& ctx, const Field& root);
 
 /// Parses "fluid", "wall", "inlet", "outlet" (nullopt otherwise).
 std::optional<ParticleKind> parse_kind(std::string_view name);
+/// Why `name` cannot be a scene name (it names output files), or nullopt.
+std::optional<std::string> invalid_scene_name(std::string_view name);
+/// The default scene name: the file's stem, other characters replaced by '_'.
+std::string scene_name_from_file(const std::filesystem::path& source);
 /// True for [A-Za-z_][A-Za-z0-9_]*.
 bool valid_identifier(std::string_view name);
 /// The region named `name` ("all" included), reporting an unknown name with

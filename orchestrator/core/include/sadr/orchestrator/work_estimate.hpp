@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+/// \file work_estimate.hpp
+/// What a scene will cost before it runs: particles, memory per process (from
+/// measured bytes per particle, bench/memory_per_particle.py), coupling steps
+/// and fluid sub-steps, frames and output bytes, molecules and SSA events.
+/// `sadr validate` and the plan print it; limits refuse a run that cannot
+/// finish on this machine (hard: memory above the machine's, output above
+/// the free disk, counts or steps beyond the exact integer range) or that
+/// would take unreasonably long (soft: lifted by `sadr run --allow-large`).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sadr/orchestrator/plan.hpp"
+#include "sadr/orchestrator/scene.hpp"
+
+namespace sadr::orchestrator {
+
+/// What this machine offers a run.
+struct MachineLimits {
+  double memory_bytes = 0;     ///< min(physical memory, cgroup memory.max): all processes
+  std::string memory_source;   ///< which of those it is
+  double process_bytes = 0;    ///< RLIMIT_AS (per process; infinity when unlimited)
+  double free_disk_bytes = 0;  ///< free bytes where the output goes (or its nearest parent)
+};
+/// Reads the limits of this machine; `output` need not exist yet.
+MachineLimits machine_limits(const std::filesystem::path& output);
+
+/// Peak resident bytes of one process: base + per_particle * N.
+struct MemoryModel {
+  double base = 0;
+  double per_particle = 0;
+  [[nodiscard]] double at(double particles) const { return base + per_particle * particles; }
+};
+/// Measured models (bench/memory_per_particle.py; docs/cli.md lists them).
+MemoryModel fluid_memory(const std::string& backend, int dimension);
+MemoryModel ssa_memory(int dimension);
+MemoryModel orchestrator_memory(const std::string& backend);
+
+struct WorkEstimate {
+  double particles = 0;
+  double sadr_bytes = 0, fluid_bytes = 0, ssa_bytes = 0;  ///< peak RSS per process
+  double coupling_steps = 0;
+  double substeps_per_step = 0;  ///< fluid sub-steps per coupling step (0: no fluid stepping)
+  std::string substep_limit;     ///< the stability limit that sets them
+  double frames = 0, output_bytes = 0;
+  double molecules = 0;           ///< stochastic copy numbers at t = 0, all species
+  double event_rate = 0;          ///< SSA events per unit time at t = 0 (diffusion + reactions)
+  double events = 0;              ///< event_rate * end time
+  std::vector<std::string> hard;  ///< limits no option lifts, each with the figures
+  std::vector<std::string> soft;  ///< limits lifted by --allow-large
+
+  [[nodiscard]] double memory_bytes() const { return sadr_bytes + fluid_bytes + ssa_bytes; }
+  [[nodiscard]] std::vector<std::string> lines() const;
+  [[nodiscard]] nlohmann::json to_json() const;
+};
+
+/// The estimate of `scene` under `plan`, with the limits of `machine` checked,
+/// for `realizations` runs of which `jobs` run at once (memory x jobs, the
+/// rest x realizations).
+WorkEstimate estimate_work(const Scene& scene, const Plan& plan, const MachineLimits& machine,
+                           int realizations = 1, int jobs = 1);
+
+/// Throws InvalidArgument with the estimate when a hard limit is exceeded, or
+/// a soft one without `allow_large`.
+void enforce_limits(const WorkEstimate& estimate, bool allow_large);
+
+/// Soft thresholds (documented in docs/cli.md).
+inline constexpr double kSoftMemoryShare = 0.5;   ///< of the machine's memory
+inline constexpr double kSoftOutputBytes = 50e9;  ///< 50 GB of frames
+inline constexpr double kSoftFrames = 1e5;
+inline constexpr double kSoftCouplingSteps = 1e8;
+inline constexpr double kSoftParticleSubsteps = 1e12;  ///< particles x fluid sub-steps
+inline constexpr double kSoftEvents = 1e12;            ///< SSA events
+/// Hard: step counters and copy numbers must stay exact integers in a double.
+inline constexpr double kExactIntegerLimit = 9007199254740992.0;  // 2^53
+
+}  // namespace sadr::orchestrator

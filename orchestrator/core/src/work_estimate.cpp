@@ -1,0 +1,306 @@
+// SPDX-License-Identifier: MIT
+#include "sadr/orchestrator/work_estimate.hpp"
+
+#include <sys/resource.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+
+#include "sadr/common/status.hpp"
+#include "sadr/orchestrator/diagnostics.hpp"
+
+namespace sadr::orchestrator {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string bytes_text(double b) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  int u = 0;
+  while (b >= 1024.0 && u < 6) {
+    b /= 1024.0;
+    ++u;
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g %s", b, units[u]);
+  return std::isfinite(b) ? buf : std::string("unlimited");
+}
+
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+/// Fluid sub-step from the same stability limits the backends apply
+/// (fluid_service/backends/*: Morris' coefficients with h_M = h/2), at t = 0.
+std::pair<double, std::string> fluid_substep(const Scene& s) {
+  const FluidSettings& f = s.fluid;
+  const double hm = 0.5 * f.smoothing_length;
+  std::pair<double, std::string> best{kInf, "none"};
+  auto consider = [&](double dt, const char* name) {
+    if (dt > 0 && dt < best.first) best = {dt, name};
+  };
+  if (f.backend != "static") {
+    double vmax = 0;
+    const auto& v = s.particles.velocities;
+    for (std::size_t i = 0; i + 2 < v.size(); i += 3) {
+      vmax = std::max(vmax, std::sqrt(v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]));
+    }
+    if (f.sound_speed > 0) consider(0.25 * hm / (f.sound_speed + vmax), "acoustic");
+    if (f.shear_viscosity > 0) {
+      consider(0.125 * f.reference_density * hm * hm / f.shear_viscosity, "viscous");
+    }
+    const double g = std::hypot(f.gravity[0], f.gravity[1], f.gravity[2]);
+    if (g > 0) consider(0.25 * std::sqrt(hm / g), "body_force");
+  }
+  double kmax = 0;
+  for (const auto& sp : s.species) {
+    if (!sp.stochastic) kmax = std::max(kmax, sp.diffusivity);
+  }
+  if (kmax > 0) consider(0.125 * hm * hm / kmax, "diffusion");
+  if (f.max_time_step > 0 && (f.force_time_step || f.max_time_step < best.first)) {
+    best = {f.max_time_step, "max_time_step"};
+  }
+  return best;
+}
+
+/// Bytes of one frame per particle and format, measured on the writers'
+/// output at 1e4 particles with 1 and 4 species (2D, thermal noise: full
+/// precision everywhere): csv 119 + 5/species, binary vtu 90 + 8/species,
+/// ascii vtu 211 + 15/species; rounded up here, plus a header.
+double frame_bytes(const Scene& s, double particles) {
+  const double species = static_cast<double>(s.output.species.size());
+  double per_particle = 0;
+  for (const auto f : s.output.formats) {
+    if (f == OutputFormat::kCsv) {
+      per_particle += 125.0 + 8.0 * species;
+    } else if (s.output.vtk_encoding == VtkEncoding::kBinary) {
+      per_particle += 92.0 + 8.0 * species;
+    } else {
+      per_particle += 215.0 + 16.0 * species;
+    }
+  }
+  return 4096.0 + per_particle * particles;
+}
+
+/// SSA events per unit time at t = 0: every molecule jumps at about
+/// 2 d kappa / dx^2, plus the mass-action propensities of the reactions.
+double ssa_event_rate(const Scene& s, double& molecules) {
+  const auto& p = s.particles;
+  const double n = static_cast<double>(p.size());
+  double volume = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind(i) == ParticleKind::kFluid) volume += p.volume(i);
+  }
+  const int d = std::max(1, s.box.dimension);
+  const double dx = s.lattice_spacing > 0
+                        ? s.lattice_spacing
+                        : std::pow(std::max(volume, 1e-300) / std::max(n, 1.0), 1.0 / d);
+  std::map<std::string, double> total;
+  double rate = 0;
+  molecules = 0;
+  for (const auto& sp : s.species) {
+    if (!sp.stochastic) continue;
+    double sum = 0;
+    for (const double c : sp.initial) sum += c;
+    total[sp.name] = sum;
+    molecules += sum;
+    rate += sum * 2.0 * d * sp.diffusivity / (dx * dx);
+  }
+  for (const auto& rx : s.reactions) {
+    if (!rx.stochastic) continue;
+    double a = rx.rate;
+    if (rx.order() == 0) a *= volume;
+    for (const auto& e : rx.reactants) {
+      for (std::uint32_t k = 0; k < e.count; ++k) a *= total[e.species];
+    }
+    if (rx.order() == 2) a /= std::max(volume, 1e-300);
+    rate += a;
+  }
+  return rate;
+}
+
+}  // namespace
+
+// Measured by bench/memory_per_particle.py (peak RSS at 1e5 and 4e5
+// particles, the slope rounded up; docs/cli.md has the table). The base
+// (libraries, thread stacks) was 9-16 MiB per process.
+MemoryModel fluid_memory(const std::string& backend, int dimension) {
+  if (backend == "static") return {16e6, dimension == 3 ? 1330.0 : 1250.0};
+  if (backend == "tdpd") return {16e6, dimension == 3 ? 820.0 : 710.0};
+  return {16e6, dimension == 3 ? 900.0 : dimension == 2 ? 830.0 : 710.0};
+}
+
+MemoryModel ssa_memory(int dimension) {
+  return {16e6, dimension == 1 ? 510.0 : 1230.0};
+}
+
+MemoryModel orchestrator_memory(const std::string& backend) {
+  return {16e6, backend == "tdpd" ? 570.0 : 490.0};
+}
+
+MachineLimits machine_limits(const std::filesystem::path& output) {
+  MachineLimits m;
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  m.memory_bytes = pages > 0 && page > 0 ? static_cast<double>(pages) * page : kInf;
+  m.memory_source = "physical memory";
+  std::ifstream cg("/sys/fs/cgroup/memory.max");
+  std::string text;
+  if (cg >> text && text != "max") {
+    const double v = std::strtod(text.c_str(), nullptr);
+    if (v > 0 && v < m.memory_bytes) {
+      m.memory_bytes = v;
+      m.memory_source = "cgroup memory.max";
+    }
+  }
+  // Operator caps (a quota, a share of a node): never raise what the machine has.
+  auto cap = [](const char* name, double& value, std::string* source) {
+    const char* v = std::getenv(name);
+    const double x = v ? std::strtod(v, nullptr) : 0.0;
+    if (x > 0 && x < value) {
+      value = x;
+      if (source) *source = name;
+    }
+  };
+  cap("SADR_MEMORY_LIMIT", m.memory_bytes, &m.memory_source);
+  rlimit rl{};
+  m.process_bytes = getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY
+                        ? static_cast<double>(rl.rlim_cur)
+                        : kInf;
+  std::error_code ec;
+  std::filesystem::path dir = std::filesystem::absolute(output, ec);
+  while (!dir.empty() && !std::filesystem::exists(dir, ec) && dir != dir.parent_path()) {
+    dir = dir.parent_path();
+  }
+  struct statvfs st {};
+  m.free_disk_bytes = statvfs(dir.c_str(), &st) == 0
+                          ? static_cast<double>(st.f_bavail) * static_cast<double>(st.f_frsize)
+                          : kInf;
+  cap("SADR_DISK_LIMIT", m.free_disk_bytes, nullptr);
+  return m;
+}
+
+WorkEstimate estimate_work(const Scene& s, const Plan& plan, const MachineLimits& machine,
+                           int realizations, int jobs) {
+  WorkEstimate e;
+  const double r = std::max(1, realizations), j = std::max(1, jobs);
+  const int d = s.box.dimension;
+  e.particles = static_cast<double>(s.particles.size());
+  e.sadr_bytes = orchestrator_memory(s.fluid.backend).at(e.particles) * j;
+  if (plan.fluid_service) e.fluid_bytes = fluid_memory(s.fluid.backend, d).at(e.particles) * j;
+  if (plan.ssa_service) e.ssa_bytes = ssa_memory(d).at(e.particles) * j;
+  const double tau = s.time.coupling_step;
+  e.coupling_steps =
+      std::ceil(s.time.end / tau * (1.0 - 1e-12)) + static_cast<double>(s.output.times.size());
+  if (plan.fluid_stepping) {
+    const auto [dt, limit] = fluid_substep(s);
+    const double calls = std::max(1, plan.fluid_calls_per_step);
+    e.substeps_per_step = std::isfinite(dt) ? calls * std::ceil(tau / calls / dt) : calls;
+    e.substep_limit = limit;
+  }
+  e.frames = static_cast<double>(s.output.times.size());
+  e.output_bytes = e.frames * frame_bytes(s, e.particles) * r;
+  if (plan.ssa_service) {
+    e.event_rate = ssa_event_rate(s, e.molecules);
+    e.events = e.event_rate * s.time.end * r;
+  }
+
+  const std::string where = " (estimate; docs/cli.md \"Work and memory estimate\")";
+  if (e.memory_bytes() > machine.memory_bytes) {
+    e.hard.push_back("memory " + bytes_text(e.memory_bytes()) + " is more than the " +
+                     machine.memory_source + " " + bytes_text(machine.memory_bytes));
+  } else if (e.memory_bytes() > kSoftMemoryShare * machine.memory_bytes) {
+    e.soft.push_back("memory " + bytes_text(e.memory_bytes()) + " is more than half the " +
+                     machine.memory_source + " " + bytes_text(machine.memory_bytes));
+  }
+  const double largest = std::max({e.sadr_bytes, e.fluid_bytes, e.ssa_bytes}) / j;
+  if (largest > machine.process_bytes) {
+    e.hard.push_back("one process needs " + bytes_text(largest) + ", more than RLIMIT_AS " +
+                     bytes_text(machine.process_bytes) + " (ulimit -v)");
+  }
+  if (e.output_bytes > machine.free_disk_bytes) {
+    e.hard.push_back("output " + bytes_text(e.output_bytes) + " is more than the free disk " +
+                     bytes_text(machine.free_disk_bytes));
+  } else if (e.output_bytes > kSoftOutputBytes) {
+    e.soft.push_back("output " + bytes_text(e.output_bytes) + " (above " +
+                     bytes_text(kSoftOutputBytes) + ")");
+  }
+  if (e.coupling_steps > kExactIntegerLimit) {
+    e.hard.push_back(num(e.coupling_steps) +
+                     " coupling steps: beyond 2^53, where step counters stop being exact");
+  } else if (e.coupling_steps > kSoftCouplingSteps) {
+    e.soft.push_back(num(e.coupling_steps) + " coupling steps (above " + num(kSoftCouplingSteps) +
+                     ")");
+  }
+  const double particle_substeps = e.particles * e.substeps_per_step * e.coupling_steps * r;
+  if (particle_substeps > kSoftParticleSubsteps) {
+    e.soft.push_back(num(particle_substeps) + " particle sub-steps of the fluid (above " +
+                     num(kSoftParticleSubsteps) + ")");
+  }
+  if (e.frames > kSoftFrames) {
+    e.soft.push_back(num(e.frames) + " frames (above " + num(kSoftFrames) + ")");
+  }
+  if (e.molecules > kExactIntegerLimit) {
+    e.hard.push_back(num(e.molecules) + " molecules: beyond 2^53, the exact integer range");
+  }
+  if (e.events > kSoftEvents) {
+    e.soft.push_back(num(e.events) + " SSA events (above " + num(kSoftEvents) + ")");
+  }
+  for (auto& line : e.hard) line += where;
+  for (auto& line : e.soft) line += where;
+  return e;
+}
+
+std::vector<std::string> WorkEstimate::lines() const {
+  std::vector<std::string> out;
+  out.push_back("estimate: " + num(particles) + " particles, peak memory " +
+                bytes_text(memory_bytes()) + " (sadr " + bytes_text(sadr_bytes) + ", fluid " +
+                bytes_text(fluid_bytes) + ", ssa " + bytes_text(ssa_bytes) + ")");
+  out.push_back("estimate: " + num(coupling_steps) + " coupling steps" +
+                (substeps_per_step > 0 ? ", ~" + num(substeps_per_step) +
+                                             " fluid sub-step(s) each (" + substep_limit + ")"
+                                       : std::string()) +
+                "; " + num(frames) + " frame(s), " + bytes_text(output_bytes) + " of output");
+  if (event_rate > 0 || molecules > 0) {
+    out.push_back("estimate: " + num(molecules) + " molecules, ~" + num(event_rate) +
+                  " SSA events per unit time at t = 0, ~" + num(events) + " events in all");
+  }
+  return out;
+}
+
+nlohmann::json WorkEstimate::to_json() const {
+  return {{"particles", particles},
+          {"sadr_bytes", sadr_bytes},
+          {"fluid_bytes", fluid_bytes},
+          {"ssa_bytes", ssa_bytes},
+          {"coupling_steps", coupling_steps},
+          {"substeps_per_step", substeps_per_step},
+          {"substep_limit", substep_limit},
+          {"frames", frames},
+          {"output_bytes", output_bytes},
+          {"molecules", molecules},
+          {"event_rate", event_rate},
+          {"events", events},
+          {"hard", hard},
+          {"soft", soft}};
+}
+
+void enforce_limits(const WorkEstimate& e, bool allow_large) {
+  if (e.hard.empty() && (allow_large || e.soft.empty())) return;
+  std::string msg = "the scene is refused by its work estimate:";
+  for (const auto& l : e.hard) msg += "\n  - " + l;
+  if (!allow_large) {
+    for (const auto& l : e.soft) msg += "\n  - " + l + " [--allow-large lifts this]";
+  }
+  for (const auto& l : e.lines()) msg += "\n  " + l;
+  throw InvalidArgument(msg);
+}
+
+}  // namespace sadr::orchestrator
