@@ -34,6 +34,10 @@ void install_signal_handlers() {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
+  // Before starting anything: what runs killed with -9 left behind.
+  if (const std::size_t n = remove_traces_of_dead_runs(); n > 0) {
+    log::info("removed ", n, " segment(s) or socket directorie(s) of runs that no longer exist");
+  }
 }
 
 bool interrupt_requested() {
@@ -274,7 +278,7 @@ int cmd_run(const CliOptions& o) {
     char name[32];
     std::snprintf(name, sizeof name, "realization_%04llu", task);
     RunOptions base;
-    base.progress = !o.quiet;
+    base.progress = !o.quiet && !o.no_progress;
     base.progress_label = std::string(name) + " ";
     const RunResult res = run_realization(scene, plan, o, task, out / name, nullptr, base);
     if (!res.interrupted) summarize_at_end(out / name, o.quiet);
@@ -282,7 +286,7 @@ int cmd_run(const CliOptions& o) {
   }
   if (r_count == 1) {
     RunOptions base;
-    base.progress = !o.quiet;
+    base.progress = !o.quiet && !o.no_progress;
     const RunResult r = run_realization(scene, plan, o, 0, out, nullptr, base);
     if (r.interrupted) {
       std::fprintf(stderr, "sadr: stopped at t = %g; resume with: sadr resume %s\n", r.time,
@@ -393,7 +397,7 @@ int cmd_resume(const CliOptions& o) {
                  static_cast<unsigned long long>(cp.manifest.realization), cp.manifest.time,
                  static_cast<unsigned long long>(cp.manifest.step_index), out.string().c_str());
   RunOptions base;
-  base.progress = !o.quiet;
+  base.progress = !o.quiet && !o.no_progress;
   const RunResult r = run_realization(scene, plan, o, cp.manifest.realization, out, &cp, base);
   if (!r.interrupted) summarize_at_end(out, o.quiet);
   return r.interrupted && g_interrupt ? kExitInterrupted : kExitOk;

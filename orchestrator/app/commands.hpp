@@ -39,6 +39,7 @@ struct CliOptions {
   double timeout_s = 120;    ///< per service call
   double stop_at = -1;       ///< checkpoint and stop at this simulated time (< 0: never)
   bool quiet = false;        ///< no progress display, plan or info lines
+  bool no_progress = false;  ///< --no-progress: no progress display (the plan stays)
   bool allow_large = false;  ///< --allow-large: lift the soft limits of the work estimate
   /// --overlap / --no-overlap: SSA step k at the same time as fluid step k + 1.
   OverlapRequest overlap = OverlapRequest::kAuto;

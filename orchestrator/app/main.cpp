@@ -100,6 +100,7 @@ int main(int argc, char** argv) {
     cmd->add_flag("-q,--quiet", o.quiet,
                   "no progress display, plan or info lines (warnings and errors only; "
                   "--log-level overrides)");
+    cmd->add_flag("--no-progress", o.no_progress, "no progress display (plan and logs stay)");
     cmd->add_flag("--allow-large", o.allow_large,
                   "run a scene whose work estimate is above the soft limits (long runs, "
                   "large output, more than half the memory; see docs/cli.md)");

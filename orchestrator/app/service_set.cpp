@@ -1,12 +1,17 @@
 // SPDX-License-Identifier: MIT
 #include "service_set.hpp"
 
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstdlib>
 #include <filesystem>
 
 #include "sadr/fluid/fluid_service.hpp"
 #include "sadr/ssa/ssa_service.hpp"
+#include "sadr/wire/shared_geometry.hpp"
 
 namespace sadr::orchestrator {
 
@@ -26,7 +31,45 @@ namespace {
 std::string unique_name(const std::string& service, const std::string& tag) {
   return "sadr-" + std::to_string(getpid()) + "-" + tag + "-" + service;
 }
+/// A new directory only this user can open, for the run's ipc sockets:
+/// <tmp>/sadr-run-<pid>-XXXXXX (mkdtemp: mode 0700).
+std::filesystem::path make_run_directory() {
+  std::string templ = (std::filesystem::temp_directory_path() /
+                       ("sadr-run-" + std::to_string(getpid()) + "-XXXXXX"))
+                          .string();
+  if (::mkdtemp(templ.data()) == nullptr) {
+    throw IoError("cannot create a run directory '" + templ + "': " + std::strerror(errno));
+  }
+  return templ;
+}
+
+bool process_gone(long pid) {
+  return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
 }  // namespace
+
+std::size_t remove_traces_of_dead_runs() {
+  std::size_t n = wire::remove_segments_of_dead_processes();
+  std::error_code ec;
+  const auto tmp = std::filesystem::temp_directory_path(ec);
+  if (ec) return n;
+  for (const auto& e : std::filesystem::directory_iterator(tmp, ec)) {
+    const std::string name = e.path().filename().string();
+    // sadr-run-<pid>-XXXXXX (run directories) and sadr-<pid>-... (sockets of
+    // older builds); only this user's.
+    const std::size_t at = name.rfind("sadr-run-", 0) == 0 ? 9
+                           : name.rfind("sadr-", 0) == 0   ? 5
+                                                           : 0;
+    if (at == 0) continue;
+    char* end = nullptr;
+    const long pid = std::strtol(name.c_str() + at, &end, 10);
+    if (*end != '-' || !process_gone(pid)) continue;
+    struct stat st {};
+    if (::lstat(e.path().c_str(), &st) != 0 || st.st_uid != ::getuid()) continue;
+    n += std::filesystem::remove_all(e.path(), ec) > 0 ? 1 : 0;
+  }
+  return n;
+}
 
 ServiceSet::ServiceSet(ServiceMode mode, const Plan& plan, const ServiceEndpoints& remote,
                        const std::string& tag)
@@ -54,7 +97,8 @@ ServiceSet::ServiceSet(ServiceMode mode, const Plan& plan, const ServiceEndpoint
         *n.endpoint = *n.remote;
         break;
       case ServiceMode::kProcesses: {
-        const std::string path = std::filesystem::temp_directory_path() / unique_name(n.name, tag);
+        if (run_dir_.empty()) run_dir_ = make_run_directory();
+        const std::string path = run_dir_ / (std::string(n.name) + "-" + tag);
         ipc_files_.push_back(path);
         const std::string exe = executable_dir() + "/" + n.exe;
         processes_.push_back(std::make_unique<ServiceProcess>(
@@ -106,8 +150,11 @@ void ServiceSet::stop() {
   threads_.clear();
   for (auto& p : processes_) p->terminate();
   processes_.clear();
-  for (const auto& f : ipc_files_) std::filesystem::remove(f);
+  std::error_code ec;
+  for (const auto& f : ipc_files_) std::filesystem::remove(f, ec);
   ipc_files_.clear();
+  if (!run_dir_.empty()) std::filesystem::remove_all(run_dir_, ec);
+  run_dir_.clear();
 }
 
 }  // namespace sadr::orchestrator

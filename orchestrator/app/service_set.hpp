@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -23,6 +24,12 @@ namespace sadr::orchestrator {
 
 enum class ServiceMode { kProcesses, kEmbedded, kRemote };
 std::string_view to_string(ServiceMode mode);
+
+/// Removes what runs that no longer exist left behind (kill -9): geometry
+/// segments /dev/shm/sadr-geometry-<pid>-* and run directories or sockets
+/// <tmp>/sadr-run-<pid>-*, <tmp>/sadr-<pid>-* of this user whose pid is gone.
+/// Returns how many were removed.
+std::size_t remove_traces_of_dead_runs();
 
 class ServiceSet {
  public:
@@ -50,7 +57,8 @@ class ServiceSet {
   std::vector<std::thread> threads_;
   std::atomic<bool> stop_threads_{false};
   std::vector<std::string> ipc_files_;
-  std::mutex alive_mutex_;  ///< check_alive() from the main thread and the SSA worker
+  std::filesystem::path run_dir_;  ///< <tmp>/sadr-run-<pid>-XXXXXX (0700): the ipc sockets
+  std::mutex alive_mutex_;         ///< check_alive() from the main thread and the SSA worker
 };
 
 }  // namespace sadr::orchestrator

@@ -28,7 +28,8 @@ TEST_P(BackendSwap, PoiseuilleTracerExampleRunsWithOnlyTheBackendNameChanged) {
   text = replace_once(text, "end: 10.0", "end: 2.0");
   const fs::path scene = write_scene(d, text);
   ASSERT_EQ(
-      run(bin("sadr") + " run " + scene.string() + " -q -o " + (d / "out").string(), d / "run.log"),
+      run(bin("sadr") + " run " + scene.string() + " --no-progress -o " + (d / "out").string(),
+          d / "run.log"),
       0)
       << read_file(d / "run.log");
   EXPECT_NE(read_file(d / "out" / "run.json").find("\"fluid_backend\": \"" + backend + "\""),

@@ -105,7 +105,7 @@ TEST(OrchestratorCli, SharedMemoryAndInlineGeometryGiveIdenticalFrames) {
   // services get it inline. Same frames, and no segment is left in /dev/shm.
   const fs::path d = scratch("shm");
   const fs::path scene = write_scene(d, moving_scene());
-  const std::string sadr = bin("sadr") + " run " + scene.string() + " -q ";
+  const std::string sadr = bin("sadr") + " run " + scene.string() + " --no-progress ";
   ASSERT_EQ(run(sadr + "-o " + (d / "shm").string(), d / "shm.log"), 0) << read_file(d / "shm.log");
   ASSERT_EQ(run(sadr + "--embedded -o " + (d / "emb").string(), d / "emb.log"), 0)
       << read_file(d / "emb.log");

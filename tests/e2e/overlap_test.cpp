@@ -235,7 +235,7 @@ TEST(Overlap, RestartOnFailureDuringAnOverlappedRunRecoversBitIdentically) {
 TEST(Overlap, ThePlanSaysWhetherOverlapIsOnAndWhy) {
   const fs::path d = scratch("overlap-plan");
   const fs::path scene = write_scene(d, moving_scene());
-  const std::string sadr = bin("sadr") + " run " + scene.string() + " -q --embedded ";
+  const std::string sadr = bin("sadr") + " run " + scene.string() + " --no-progress --embedded ";
   struct Case {
     std::string flags, expect;
   };
@@ -266,8 +266,8 @@ TEST(Overlap, ThePlanSaysWhetherOverlapIsOnAndWhy) {
                                       replace_once(moving_scene(), "coupling_step: 0.05,",
                                                    "coupling_step: 0.05, splitting: strang,"),
                                       "strang.yaml");
-  ASSERT_EQ(run(bin("sadr") + " run " + strang.string() + " -q --embedded --overlap -o " +
-                    (d / "s").string(),
+  ASSERT_EQ(run(bin("sadr") + " run " + strang.string() +
+                    " --no-progress --embedded --overlap -o " + (d / "s").string(),
                 d / "s.log"),
             0)
       << read_file(d / "s.log");

@@ -3,11 +3,16 @@
 
 #include <unistd.h>
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <thread>
 
 #include "sadr/common/log.hpp"
 #include "sadr/common/version.hpp"
+#include "sadr/wire/shared_geometry.hpp"
 
 namespace sadr::wire {
 namespace {
@@ -22,6 +27,46 @@ log::Level parse_level(const std::string& s) {
   if (s == "warn") return log::Level::kWarn;
   if (s == "debug") return log::Level::kDebug;
   return log::Level::kInfo;
+}
+
+/// What a service leaves on the file system: its ipc socket file, the run
+/// directory holding it (removed when empty) and, when its parent died, the
+/// parent's geometry segments (nobody else can unlink them any more).
+void remove_traces(const std::string& endpoint, long dead_parent) {
+  constexpr std::string_view kIpc = "ipc://";
+  if (endpoint.rfind(kIpc, 0) == 0) {
+    const std::filesystem::path socket = endpoint.substr(kIpc.size());
+    std::error_code ec;
+    std::filesystem::remove(socket, ec);
+    if (socket.parent_path().filename().string().rfind("sadr-run-", 0) == 0) {
+      std::filesystem::remove(socket.parent_path(), ec);  // only if empty
+    }
+  }
+  if (dead_parent > 0) remove_segments_of(dead_parent);
+}
+
+/// Stops the process within about a second, even inside a long request, when
+/// the sadr that launched it dies (SADR_PARENT_PID, no longer our parent) or
+/// when a stop signal is not honoured within 0.8 s (the serve loop only sees
+/// it between requests): removes its traces, then _exit. A clean shutdown
+/// returns from main before the watchdog acts.
+void start_watchdog(const std::string& name, const std::string& endpoint) {
+  const char* v = std::getenv("SADR_PARENT_PID");
+  const long parent = v ? std::atol(v) : 0;
+  std::thread([name, endpoint, parent] {
+    int stopping_ticks = 0;
+    for (;;) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      const bool orphan = parent > 0 && static_cast<long>(getppid()) != parent;
+      if (g_stop.load()) ++stopping_ticks;
+      if (!orphan && stopping_ticks < 8) continue;
+      remove_traces(endpoint, orphan ? parent : 0);
+      log::warn(name, orphan ? ": the sadr that launched it (pid " + std::to_string(parent) +
+                                   ") died; exiting"
+                             : std::string(": stop signal during a request; exiting"));
+      std::_Exit(orphan ? 1 : 0);
+    }
+  }).detach();
 }
 
 }  // namespace
@@ -70,7 +115,9 @@ int run_service_main(int argc, char** argv, common::v1::ServiceKind kind,
     std::printf("SADR_ENDPOINT %s\n", server.endpoint().c_str());
     std::fflush(stdout);
     log::info(name, " ", kVersion, " (pid ", getpid(), ") serving on ", server.endpoint());
+    start_watchdog(name, server.endpoint());
     serve_forever(server, *handler, &g_stop);
+    remove_traces(server.endpoint(), 0);
     log::info(name, g_stop.load() ? " stopped by signal" : " shut down on request");
     return 0;
   } catch (const std::exception& e) {

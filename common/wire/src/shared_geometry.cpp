@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/wire/shared_geometry.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <utility>
 
@@ -58,6 +61,42 @@ std::string system_error(const std::string& what, const std::string& name) {
 }
 
 }  // namespace
+
+namespace {
+constexpr std::string_view kSegmentPrefix = "sadr-geometry-";
+
+/// Calls f(name, pid) for every /dev/shm/sadr-geometry-<pid>-<k> of this user.
+template <typename F>
+std::size_t for_each_segment(F&& f) {
+  std::size_t n = 0;
+  DIR* dir = ::opendir("/dev/shm");
+  if (dir == nullptr) return 0;
+  while (const dirent* e = ::readdir(dir)) {
+    const std::string_view name(e->d_name);
+    if (name.substr(0, kSegmentPrefix.size()) != kSegmentPrefix) continue;
+    const std::string rest(name.substr(kSegmentPrefix.size()));
+    char* end = nullptr;
+    const long pid = std::strtol(rest.c_str(), &end, 10);
+    if (pid <= 0 || *end != '-') continue;
+    struct stat st {};
+    std::string path = "/dev/shm/";
+    path.append(name);
+    if (::stat(path.c_str(), &st) != 0 || st.st_uid != ::getuid()) continue;
+    if (f(pid) && ::shm_unlink(path.c_str() + 8) == 0) ++n;  // the name: "/sadr-geometry-..."
+  }
+  ::closedir(dir);
+  return n;
+}
+}  // namespace
+
+std::size_t remove_segments_of(long pid) {
+  return for_each_segment([pid](long owner) { return owner == pid; });
+}
+
+std::size_t remove_segments_of_dead_processes() {
+  return for_each_segment(
+      [](long owner) { return ::kill(static_cast<pid_t>(owner), 0) != 0 && errno == ESRCH; });
+}
 
 SharedGeometry SharedGeometry::create(std::size_t capacity) {
   static_assert(sizeof(Header) == kHeaderBytes);

@@ -36,6 +36,21 @@ ServiceProcess::ServiceProcess(std::string executable, std::vector<std::string> 
     throw Error(StatusCode::kUnavailable, "cannot start " + name_ + ": pipe failed");
   }
   const pid_t parent = getpid();
+  // The child's environment, built before fork (the child may only call
+  // async-signal-safe functions): ours plus SADR_PARENT_PID, which arms the
+  // service's parent-death watchdog (service_main.cpp).
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (std::strncmp(*e, "SADR_PARENT_PID=", 16) != 0) env_text.emplace_back(*e);
+  }
+  env_text.push_back("SADR_PARENT_PID=" + std::to_string(parent));
+  std::vector<char*> envp;
+  for (auto& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  std::vector<char*> argv;
+  argv.push_back(executable.data());
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   pid_ = fork();
   if (pid_ < 0) {
     close(fds[0]);
@@ -49,11 +64,7 @@ ServiceProcess::ServiceProcess(std::string executable, std::vector<std::string> 
                     // which checkpoints and then stops the services itself
     if (getppid() != parent) _exit(127);
     dup2(fds[1], STDOUT_FILENO);
-    std::vector<char*> argv;
-    argv.push_back(executable.data());
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(executable.c_str(), argv.data());
+    execve(executable.c_str(), argv.data(), envp.data());
     _exit(127);
   }
   close(fds[1]);

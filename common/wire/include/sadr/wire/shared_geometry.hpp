@@ -39,6 +39,14 @@
 
 namespace sadr::wire {
 
+/// Unlinks the geometry segments that process `pid` created
+/// ("/sadr-geometry-<pid>-*"); returns how many. For a service whose parent
+/// died and for sadr's sweep of dead runs.
+std::size_t remove_segments_of(long pid);
+/// Unlinks the segments of every process of this user that no longer runs
+/// (kill(pid, 0) fails with ESRCH); returns how many.
+std::size_t remove_segments_of_dead_processes();
+
 class SharedGeometry {
  public:
   /// A new segment for `capacity` particles (name: "/sadr-geometry-<pid>-<k>").
