@@ -84,8 +84,8 @@ LoadedCheckpoint load_checkpoint(const std::filesystem::path& path,
                                  std::string_view expected_scene_hash);
 
 /// Refuses a manifest that the scene could not have produced (a hand edit):
-/// time not finite or outside [0, end], step_index outside what the coupling
-/// step allows for that time, seed not the realization's. The field is named.
+/// time not finite or outside [0, end], step_index beyond what the coupling
+/// step allows for that time (or 0 for t > 0), seed not the realization's. The field is named.
 /// @throws sadr::InvalidArgument
 void check_manifest_fits_scene(const CheckpointManifest& manifest, double end_time,
                                double coupling_step, std::size_t output_times,
