@@ -75,7 +75,6 @@ void check_work(const Scene& scene, const Plan& plan, const CliOptions& o, const
   for (const auto& line : e.soft) log::warn(line, " (allowed by --allow-large)");
 }
 
-
 /// OpenMP threads the fluid will use: --fluid-threads, else OMP_NUM_THREADS (its
 /// first value), else every hardware thread (OpenMP's default).
 int fluid_threads(const CliOptions& o, unsigned hardware_threads) {

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -41,6 +42,22 @@ std::filesystem::path make_run_directory() {
     throw IoError("cannot create a run directory '" + templ + "': " + std::strerror(errno));
   }
   return templ;
+}
+
+/// 32 random bytes as hex: the secret that only this run's services accept.
+std::string make_run_secret() {
+  unsigned char bytes[32];
+  std::FILE* f = std::fopen("/dev/urandom", "rb");
+  const bool ok = f != nullptr && std::fread(bytes, 1, sizeof bytes, f) == sizeof bytes;
+  if (f != nullptr) std::fclose(f);
+  if (!ok) throw IoError("cannot read /dev/urandom for the run's secret");
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (const unsigned char b : bytes) {
+    out.push_back(kHex[b >> 4]);
+    out.push_back(kHex[b & 15]);
+  }
+  return out;
 }
 
 bool process_gone(long pid) {
@@ -101,10 +118,13 @@ ServiceSet::ServiceSet(ServiceMode mode, const Plan& plan, const ServiceEndpoint
         const std::string path = run_dir_ / (std::string(n.name) + "-" + tag);
         ipc_files_.push_back(path);
         const std::string exe = executable_dir() + "/" + n.exe;
+        if (secret_.empty()) secret_ = make_run_secret();
         processes_.push_back(std::make_unique<ServiceProcess>(
             exe, std::vector<std::string>{"--endpoint", "ipc://" + path, "--log-level", "warn"},
-            n.exe));
+            n.exe, std::chrono::seconds(20),
+            std::vector<std::string>{"SADR_RUN_SECRET=" + secret_}));
         *n.endpoint = processes_.back()->endpoint();
+        wire::set_client_secret(*n.endpoint, secret_);  // only our clients get in
         break;
       }
       case ServiceMode::kEmbedded: {
@@ -148,7 +168,10 @@ void ServiceSet::stop() {
     if (t.joinable()) t.join();
   }
   threads_.clear();
-  for (auto& p : processes_) p->terminate();
+  for (auto& p : processes_) {
+    wire::set_client_secret(p->endpoint(), "");
+    p->terminate();
+  }
   processes_.clear();
   std::error_code ec;
   for (const auto& f : ipc_files_) std::filesystem::remove(f, ec);

@@ -57,6 +57,7 @@ class ServiceSet {
   std::vector<std::thread> threads_;
   std::atomic<bool> stop_threads_{false};
   std::vector<std::string> ipc_files_;
+  std::string secret_;  ///< per-run secret of the services launched here (SADR_RUN_SECRET)
   std::filesystem::path run_dir_;  ///< <tmp>/sadr-run-<pid>-XXXXXX (0700): the ipc sockets
   std::mutex alive_mutex_;         ///< check_alive() from the main thread and the SSA worker
 };

@@ -16,6 +16,7 @@ File format (one block per case; `#` starts a comment line):
     before: ARGS           a sadr call that must exit 0 first
     edit: FILE KEY=JSON    set a key (a.b.0.c for nested) in a JSON file
     args: ARGS             the sadr call under test ({scene}, {out}, {dir})
+    program: NAME          run BIN_DIR/NAME instead of sadr (e.g. fluid_service)
     exit: N                expected exit code
     message: TEXT          must appear in stdout + stderr (several allowed)
     absent-text: TEXT      must not appear
@@ -94,7 +95,7 @@ def run_case(bindir, bases, name, lines):
             k, _, v = e.partition("=")
             env[k] = v
         subst = lambda s: [a.format(scene=scene, out=os.path.join(d, "out"), dir=d)
-                           for a in shlex.split(s)]
+                           for a in shlex.split(expand(s))]
         sadr = os.path.join(bindir, "sadr")
         for b in spec["before"]:
             p = subprocess.run([sadr] + subst(b), cwd=d, env=env, capture_output=True, text=True,
@@ -105,8 +106,9 @@ def run_case(bindir, bases, name, lines):
             fpath, _, kv = e.partition(" ")
             k, _, v = kv.partition("=")
             set_json(os.path.join(d, fpath), k, json.loads(v))
+        program = os.path.join(bindir, spec.get("program", "sadr"))
         try:
-            p = subprocess.run([sadr] + subst(spec["args"]), cwd=d, env=env, capture_output=True,
+            p = subprocess.run([program] + subst(spec["args"]), cwd=d, env=env, capture_output=True,
                                text=True, errors="replace", timeout=TIMEOUT)
         except subprocess.TimeoutExpired:
             return f"still running after {TIMEOUT} s (killed)"

@@ -4,7 +4,11 @@
 #include <unistd.h>
 #include <algorithm>
 #include <cerrno>
+#include <future>
+#include <map>
+#include <mutex>
 #include <set>
+#include <thread>
 #include <vector>
 #include <zmq.hpp>
 #include <zmq_addon.hpp>
@@ -63,6 +67,69 @@ std::string_view view(const zmq::message_t& m) {
   return {static_cast<const char*>(m.data()), m.size()};
 }
 
+// ---- authentication (ZAP, RFC 27): one handler per process ------------------
+
+std::mutex g_auth_mutex;
+std::map<std::string, std::string> g_domain_secrets;    // server ZAP domain -> secret
+std::map<std::string, std::string> g_endpoint_secrets;  // client endpoint -> secret
+
+bool same_secret(std::string_view a, std::string_view b) {
+  unsigned diff = a.size() == b.size() ? 0u : 1u;  // constant time in the content
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    diff |= static_cast<unsigned char>(a[i]) ^ static_cast<unsigned char>(b[i]);
+  }
+  return diff == 0;
+}
+
+/// Answers ZAP requests [version, id, domain, address, identity, mechanism,
+/// credentials...]: our domains accept PLAIN with the domain's secret only;
+/// domains of other sockets are accepted (they did not ask for a secret).
+void zap_loop(std::promise<void>* bound) {
+  zmq::socket_t zap(shared_context(), zmq::socket_type::rep);
+  zap.bind("inproc://zeromq.zap.01");
+  bound->set_value();
+  for (;;) {
+    std::vector<zmq::message_t> req;
+    try {
+      if (!zmq::recv_multipart(zap, std::back_inserter(req))) continue;
+    } catch (const zmq::error_t&) {
+      continue;
+    }
+    std::string status = "400", text = "no or wrong run secret";
+    if (req.size() >= 6) {
+      std::lock_guard lock(g_auth_mutex);
+      const auto it = g_domain_secrets.find(req[2].to_string());
+      if (it == g_domain_secrets.end() || (req[5].to_string() == "PLAIN" && req.size() >= 8 &&
+                                           same_secret(view(req[7]), it->second))) {
+        status = "200";
+        text = "OK";
+      }
+    }
+    if (status != "200") log::warn("refused a connection without the run's secret");
+    std::vector<zmq::message_t> out;
+    out.emplace_back(std::string_view("1.0"));
+    if (req.size() > 1) {
+      out.emplace_back(req[1].data(), req[1].size());
+    } else {
+      out.emplace_back();
+    }
+    out.emplace_back(std::string_view(status));
+    out.emplace_back(std::string_view(text));
+    out.emplace_back(std::string_view("sadr"));
+    out.emplace_back();
+    zmq::send_multipart(zap, out);
+  }
+}
+
+void ensure_zap_handler() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    std::promise<void> bound;
+    std::thread(zap_loop, &bound).detach();
+    bound.get_future().wait();
+  });
+}
+
 /// Number of frames up to and including the empty delimiter (or all frames if none).
 std::size_t envelope_size(const std::vector<zmq::message_t>& frames) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -72,6 +139,20 @@ std::size_t envelope_size(const std::vector<zmq::message_t>& frames) {
 }
 
 }  // namespace
+
+void set_client_secret(const std::string& endpoint, const std::string& secret) {
+  std::lock_guard lock(g_auth_mutex);
+  if (secret.empty()) {
+    g_endpoint_secrets.erase(endpoint);
+  } else {
+    g_endpoint_secrets[endpoint] = secret;
+  }
+}
+
+std::string shorten(std::string_view text, std::size_t limit) {
+  if (text.size() <= limit) return std::string(text);
+  return std::string(text.substr(0, limit)) + "... (" + std::to_string(text.size()) + " bytes)";
+}
 
 std::string_view service_name(common::v1::ServiceKind kind) {
   switch (kind) {
@@ -90,6 +171,7 @@ struct RpcServer::Impl {
   ServerOptions options;
   zmq::socket_t socket{shared_context(), zmq::socket_type::router};
   std::set<std::string> handshaken;  // ROUTER identities that completed a handshake
+  std::string zap_domain;            // registered in g_domain_secrets when a secret is set
 
   /// Returns the reply [header, body] for one request.
   std::pair<std::string, std::string> dispatch(const std::string& peer,
@@ -102,6 +184,17 @@ RpcServer::RpcServer(ServerOptions options) : impl_(std::make_unique<Impl>()) {
   auto& s = impl_->socket;
   s.set(zmq::sockopt::linger, 0);
   s.set(zmq::sockopt::maxmsgsize, impl_->options.max_message_bytes);
+  if (!impl_->options.secret.empty()) {
+    ensure_zap_handler();
+    static std::atomic<unsigned> counter{0};
+    impl_->zap_domain = "sadr-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+    {
+      std::lock_guard lock(g_auth_mutex);
+      g_domain_secrets[impl_->zap_domain] = impl_->options.secret;
+    }
+    s.set(zmq::sockopt::zap_domain, impl_->zap_domain);
+    s.set(zmq::sockopt::plain_server, 1);
+  }
   try {
     s.bind(impl_->options.endpoint);
   } catch (const zmq::error_t& e) {
@@ -111,7 +204,12 @@ RpcServer::RpcServer(ServerOptions options) : impl_(std::make_unique<Impl>()) {
   }
 }
 
-RpcServer::~RpcServer() = default;
+RpcServer::~RpcServer() {
+  if (impl_ && !impl_->zap_domain.empty()) {
+    std::lock_guard lock(g_auth_mutex);
+    g_domain_secrets.erase(impl_->zap_domain);
+  }
+}
 
 std::string RpcServer::endpoint() const {
   return impl_->socket.get(zmq::sockopt::last_endpoint);
@@ -144,7 +242,7 @@ std::pair<std::string, std::string> RpcServer::Impl::dispatch(
                   "protocol version mismatch: this " + me + " speaks sadr wire protocol v" +
                       std::to_string(kProtocolVersion) + ", the request declared v" +
                       std::to_string(header.protocol_version()) + " (message " +
-                      header.message_type() + ")");
+                      shorten(header.message_type()) + ")");
   }
   const std::string_view body = view(frames[payload + 1]);  // parsed in place, not copied
   if (header.message_type() == kHandshakeType) {
@@ -175,18 +273,18 @@ std::pair<std::string, std::string> RpcServer::Impl::dispatch(
             {}};
     } else {
       handshaken.insert(peer);
-      log::info("handshake from '", req.client_name(), "' accepted (protocol v", kProtocolVersion,
-                ")");
+      log::info("handshake from '", shorten(req.client_name()), "' accepted (protocol v",
+                kProtocolVersion, ")");
     }
     if (!st.ok()) log::warn("handshake refused: ", st.message);
     to_proto(st, *rep.mutable_status());
     return {make_header(kHandshakeReplyType, header.sequence()), to_bytes(rep)};
   }
   if (header.message_type() != handler.request_type()) {
-    return refuse(StatusCode::kProtocolMismatch, "unexpected message type '" +
-                                                     header.message_type() + "': this " + me +
-                                                     " accepts " + std::string(kHandshakeType) +
-                                                     " and " + std::string(handler.request_type()));
+    return refuse(StatusCode::kProtocolMismatch,
+                  "unexpected message type '" + shorten(header.message_type()) + "': this " + me +
+                      " accepts " + std::string(kHandshakeType) + " and " +
+                      std::string(handler.request_type()));
   }
   if (!handshaken.count(peer)) {
     return refuse(StatusCode::kFailedPrecondition,
@@ -244,6 +342,13 @@ RpcClient::RpcClient(std::string endpoint, std::string peer_name, std::chrono::m
   s.set(zmq::sockopt::linger, 0);
   s.set(zmq::sockopt::req_relaxed, 1);    // may resend after a timeout
   s.set(zmq::sockopt::req_correlate, 1);  // ... and ignore the late reply
+  {
+    std::lock_guard lock(g_auth_mutex);
+    if (const auto it = g_endpoint_secrets.find(endpoint_); it != g_endpoint_secrets.end()) {
+      s.set(zmq::sockopt::plain_username, "sadr");
+      s.set(zmq::sockopt::plain_password, it->second);
+    }
+  }
   try {
     s.connect(endpoint_);
   } catch (const zmq::error_t& e) {
@@ -317,8 +422,8 @@ void RpcClient::call(const google::protobuf::Message& request, google::protobuf:
   }
   if (header.message_type() != reply.GetTypeName()) {
     throw Error(StatusCode::kProtocolMismatch, peer_name_ + " replied with message type '" +
-                                                   header.message_type() + "', expected '" +
-                                                   reply.GetTypeName() + "'");
+                                                   shorten(header.message_type()) +
+                                                   "', expected '" + reply.GetTypeName() + "'");
   }
   if (!reply.ParseFromArray(rb.data(), static_cast<int>(rb.size()))) {
     throw Error(StatusCode::kProtocolMismatch, peer_name_ + " sent an unparsable " +

@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <thread>
 
@@ -27,6 +28,13 @@ log::Level parse_level(const std::string& s) {
   if (s == "warn") return log::Level::kWarn;
   if (s == "debug") return log::Level::kDebug;
   return log::Level::kInfo;
+}
+
+/// ipc://, inproc:// and tcp on 127.0.0.0/8, [::1] or localhost.
+bool loopback_or_local(const std::string& endpoint) {
+  if (endpoint.rfind("tcp://", 0) != 0) return true;
+  const std::string host = endpoint.substr(6, endpoint.rfind(':') - 6);
+  return host == "localhost" || host == "[::1]" || host == "::1" || host.rfind("127.", 0) == 0;
 }
 
 /// What a service leaves on the file system: its ipc socket file, the run
@@ -91,6 +99,11 @@ int run_service_main(int argc, char** argv, common::v1::ServiceKind kind,
   app.add_option("--max-message-mb", max_mb, "largest accepted message [MiB]")
       ->check(CLI::Range(1, 2047))
       ->capture_default_str();
+  bool insecure_bind = false;
+  app.add_flag("--insecure-bind", insecure_bind,
+               "allow a tcp endpoint on a non-loopback address: anyone who can reach it can "
+               "read and change the run (no authentication on tcp; prefer loopback plus an "
+               "ssh tunnel, docs/cli.md)");
   app.add_option("--log-level", level, "error|warn|info|debug")
       ->check(CLI::IsMember({"error", "warn", "info", "debug"}))
       ->capture_default_str();
@@ -102,6 +115,15 @@ int run_service_main(int argc, char** argv, common::v1::ServiceKind kind,
   }
   log::set_component(name);
   log::set_level(parse_level(level));
+  if (!insecure_bind && !loopback_or_local(endpoint)) {
+    std::fprintf(stderr,
+                 "%s: refusing to bind '%s': a tcp endpoint on a non-loopback address has no "
+                 "authentication (anyone who reaches it can read the particles and stop the "
+                 "run); bind tcp://127.0.0.1:PORT and reach it through an ssh tunnel, or pass "
+                 "--insecure-bind on a network you trust (docs/cli.md, \"Security\")\n",
+                 name.c_str(), shorten(endpoint).c_str());
+    return 2;
+  }
   std::signal(SIGTERM, on_signal);
   std::signal(SIGINT, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
@@ -111,6 +133,14 @@ int run_service_main(int argc, char** argv, common::v1::ServiceKind kind,
     options.endpoint = endpoint;
     options.kind = kind;
     options.max_message_bytes = max_mb * 1024 * 1024;
+    // The per-run secret of the sadr that launched us (never on the command
+    // line, where every user could read it): taken, then wiped from our
+    // environment block (/proc/PID/environ).
+    if (char* secret = std::getenv("SADR_RUN_SECRET"); secret != nullptr && *secret != '\0') {
+      options.secret = secret;
+      std::memset(secret, 'x', std::strlen(secret));
+      unsetenv("SADR_RUN_SECRET");
+    }
     RpcServer server(options);
     std::printf("SADR_ENDPOINT %s\n", server.endpoint().c_str());
     std::fflush(stdout);

@@ -24,7 +24,8 @@ std::string executable_dir() {
 }
 
 ServiceProcess::ServiceProcess(std::string executable, std::vector<std::string> args,
-                               std::string name, std::chrono::milliseconds startup_timeout)
+                               std::string name, std::chrono::milliseconds startup_timeout,
+                               std::vector<std::string> env)
     : name_(std::move(name)) {
   if (access(executable.c_str(), X_OK) != 0) {
     throw Error(StatusCode::kUnavailable, "cannot start " + name_ + ": '" + executable +
@@ -41,9 +42,13 @@ ServiceProcess::ServiceProcess(std::string executable, std::vector<std::string> 
   // service's parent-death watchdog (service_main.cpp).
   std::vector<std::string> env_text;
   for (char** e = environ; *e != nullptr; ++e) {
-    if (std::strncmp(*e, "SADR_PARENT_PID=", 16) != 0) env_text.emplace_back(*e);
+    if (std::strncmp(*e, "SADR_PARENT_PID=", 16) != 0 &&
+        std::strncmp(*e, "SADR_RUN_SECRET=", 16) != 0) {
+      env_text.emplace_back(*e);
+    }
   }
   env_text.push_back("SADR_PARENT_PID=" + std::to_string(parent));
+  for (auto& e : env) env_text.push_back(std::move(e));
   std::vector<char*> envp;
   for (auto& e : env_text) envp.push_back(e.data());
   envp.push_back(nullptr);

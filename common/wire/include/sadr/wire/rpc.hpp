@@ -55,7 +55,19 @@ struct ServerOptions {
   std::int64_t max_message_bytes = std::int64_t{1}
                                    << 31;        ///< larger messages are dropped by ZeroMQ
   std::chrono::milliseconds poll_interval{100};  ///< how often serve() checks the stop flag
+  /// Non-empty: only clients presenting this secret connect (ZeroMQ PLAIN
+  /// checked by a ZAP handler in this process); others fail in the ZeroMQ
+  /// handshake and never reach serve(). Services launched by sadr get a
+  /// per-run secret through SADR_RUN_SECRET (service_main.hpp).
+  std::string secret;
 };
+
+/// Clients of `endpoint` created from now on present `secret` (PLAIN); an
+/// empty secret forgets the endpoint. Set by sadr for the services it launches.
+void set_client_secret(const std::string& endpoint, const std::string& secret);
+/// At most `limit` characters of `text`, with "... (N bytes)" when cut: for
+/// echoing or logging what a peer sent.
+std::string shorten(std::string_view text, std::size_t limit = 80);
 
 /// A bound server socket (ROUTER) that checks frames and handshakes.
 class RpcServer {

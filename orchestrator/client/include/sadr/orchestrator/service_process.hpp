@@ -20,8 +20,11 @@ class ServiceProcess {
   /// Starts `executable args...` and waits up to `startup_timeout` for the
   /// endpoint line. Throws sadr::Error(kUnavailable) naming `name` if the
   /// executable is missing, exits early, or does not announce in time.
+  /// `env` ("NAME=value") is added to the child's environment (not its
+  /// command line), e.g. the run's SADR_RUN_SECRET.
   ServiceProcess(std::string executable, std::vector<std::string> args, std::string name,
-                 std::chrono::milliseconds startup_timeout = std::chrono::seconds(20));
+                 std::chrono::milliseconds startup_timeout = std::chrono::seconds(20),
+                 std::vector<std::string> env = {});
   ~ServiceProcess();
   ServiceProcess(const ServiceProcess&) = delete;
   ServiceProcess& operator=(const ServiceProcess&) = delete;
