@@ -170,8 +170,8 @@ void check_manifest_fits_scene(const CheckpointManifest& m, double end_time, dou
   // scene without fluid stepping may take longer ones): at least one step
   // reaches any t > 0, at most ceil(t / tau) + outputs + 1.
   const double fewest = m.time > 0.0 ? 1.0 : 0.0;
-  const double most = std::ceil(m.time / coupling_step * (1.0 + 1e-9)) +
-                      static_cast<double>(output_times) + 1.0;
+  const double most =
+      std::ceil(m.time / coupling_step * (1.0 + 1e-9)) + static_cast<double>(output_times) + 1.0;
   const auto steps = static_cast<double>(m.step_index);
   if (steps < fewest || steps > most) {
     refuse("step_index", "= " + std::to_string(m.step_index) + " does not fit time " +

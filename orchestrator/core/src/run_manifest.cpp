@@ -5,8 +5,8 @@
 
 #include <ctime>
 
-#include "sadr/common/status.hpp"
 #include "sadr/common/build_info.hpp"
+#include "sadr/common/status.hpp"
 #include "sadr/common/version.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/hash.hpp"
