@@ -7,7 +7,8 @@
 
 namespace sadr::fluid {
 
-/// Registers "prescribed", "sdpd", "static" and "tdpd" (registry.cpp). New backends add one line there.
+/// Registers "prescribed", "sdpd", "static" and "tdpd" (registry.cpp). New backends add one line
+/// there.
 void register_builtin_backends(BackendRegistry& registry);
 
 }  // namespace sadr::fluid

@@ -27,9 +27,10 @@
 namespace sadr::orchestrator {
 
 struct Plan {
-  std::string fluid_backend;                ///< backend name from the scene (sdpd, static, tdpd)
-  bool fluid_service = true;                ///< launch fluid_service
-  bool fluid_stepping = true;               ///< advance the fluid every coupling step (particles move, or deterministic species)
+  std::string fluid_backend;  ///< backend name from the scene (sdpd, static, tdpd)
+  bool fluid_service = true;  ///< launch fluid_service
+  bool fluid_stepping =
+      true;  ///< advance the fluid every coupling step (particles move, or deterministic species)
   bool ssa_service = false;                 ///< launch ssa_service
   bool graph_rebuild_each_step = false;     ///< particles move: the SSA graph is rebuilt every step
   bool particles_to_ssa_each_step = false;  ///< positions/densities/masses fluid -> ssa per step
