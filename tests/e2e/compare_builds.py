@@ -50,6 +50,12 @@ STOP_AT = {
     "open_channel_tracer": "0.5",
     "annihilation_1d_stochastic_n65": "0.5",
     "annihilation_1d_stochastic_n33": "1.0",
+    "natural_convection_ra1e4": "1.0",
+    "natural_convection_ra1e5": "1.0",
+    "natural_convection_ra1e6": "1.0",
+    "natural_convection_ra1e4_stochastic": "1.0",
+    "natural_convection_ra1e5_stochastic": "1.0",
+    "natural_convection_ra1e6_stochastic": "1.0",
 }
 
 # e2e scenes that run until a test kills a service (end 1000-2000): cut as well.
@@ -128,7 +134,8 @@ def snapshot_digest(data: bytes) -> str:
     return h.hexdigest()
 
 
-def digest_tree(out: pathlib.Path, fluid_payload: bool = False) -> dict[str, str]:
+def digest_tree(out: pathlib.Path, fluid_payload: bool = False,
+                frames_only: bool = False) -> dict[str, str]:
     """Relative path -> sha256 of every compared file of one run."""
     files = {}
     for p in sorted(out.rglob("*")):
@@ -136,6 +143,8 @@ def digest_tree(out: pathlib.Path, fluid_payload: bool = False) -> dict[str, str
             continue
         rel = p.relative_to(out).as_posix()
         if rel.endswith("run.json") or rel.endswith(".log") or rel.endswith("checkpoint.json"):
+            continue
+        if frames_only and rel.startswith("checkpoint/"):
             continue
         m = FLUID_BLOB.match(rel) if fluid_payload else None
         if m:
@@ -191,6 +200,9 @@ def main() -> int:
     ap.add_argument("--only", help="substring: run only scenes whose name contains it")
     ap.add_argument("--resume", action="store_true",
                     help="also resume OLD's mid-run checkpoint of every example with NEW")
+    ap.add_argument("--frames-only", action="store_true",
+                    help="leave checkpoint/ out (a change meant to alter step counts, "
+                         "e.g. frame-to-frame SSA steps, keeps frames but not blob names)")
     ap.add_argument("--fluid-blob-payload", action="store_true",
                     help="compare fluid checkpoint blobs after their state header (see above)")
     args = ap.parse_args()
@@ -214,8 +226,8 @@ def main() -> int:
             result = "both-fail" if ok else f"rc {rca}/{rcb}"
             nfiles = 0
         else:
-            da = digest_tree(oa, args.fluid_blob_payload)
-            db = digest_tree(ob, args.fluid_blob_payload)
+            da = digest_tree(oa, args.fluid_blob_payload, args.frames_only)
+            db = digest_tree(ob, args.fluid_blob_payload, args.frames_only)
             ok = da == db and len(da) > 0
             nfiles = len(da)
             result = "identical" if ok else "DIFFERS"
@@ -231,8 +243,8 @@ def main() -> int:
         if args.resume and scene.parent.name == "examples" and ok and rca == 0:
             orr = args.work / "resume" / tag
             rcr, logr = resume_one(args.old_bin, args.new_bin, scene, orr, extra)
-            dr = digest_tree(orr, args.fluid_blob_payload) if rcr == 0 else {}
-            ref = digest_tree(oa, args.fluid_blob_payload)
+            dr = digest_tree(orr, args.fluid_blob_payload, args.frames_only) if rcr == 0 else {}
+            ref = digest_tree(oa, args.fluid_blob_payload, args.frames_only)
             if not any(k.startswith("checkpoint/") for k in ref):
                 # The whole run wrote no checkpoint; the half run's stays: frames only.
                 dr = {k: v for k, v in dr.items() if not k.startswith("checkpoint/")}
