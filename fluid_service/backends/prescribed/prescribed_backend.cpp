@@ -184,9 +184,7 @@ StepReport PrescribedBackend::step(std::uint64_t step_index, double time_step) {
     vmax2 = std::max(vmax2, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }
   rep.max_speed = std::sqrt(vmax2);
-  const auto [mn, mx] = std::minmax_element(state_.densities.begin(), state_.densities.end());
-  rep.min_density = *mn;
-  rep.max_density = *mx;
+  rep.set_density_band(state_.densities);
   return rep;
 }
 

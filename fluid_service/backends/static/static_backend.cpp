@@ -53,9 +53,7 @@ StepReport StaticBackend::step(std::uint64_t step_index, double time_step) {
   rep.substeps = sub;
   rep.particles_moved = false;
   rep.max_speed = 0;
-  const auto [mn, mx] = std::minmax_element(state_.densities.begin(), state_.densities.end());
-  rep.min_density = *mn;
-  rep.max_density = *mx;
+  rep.set_density_band(state_.densities);
   return rep;
 }
 

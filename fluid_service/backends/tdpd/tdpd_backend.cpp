@@ -214,12 +214,7 @@ StepReport TdpdBackend::step(std::uint64_t step_index, double time_step) {
                                 v_[3 * i + 2] * v_[3 * i + 2]);
   }
   rep.max_speed = std::sqrt(vmax2);
-  const auto& rho = rho_;  // from the last force evaluation, at the current positions
-  if (!rho.empty()) {
-    const auto [lo, hi] = std::minmax_element(rho.begin(), rho.end());
-    rep.min_density = *lo;
-    rep.max_density = *hi;
-  }
+  rep.set_density_band(rho_);  // from the last force evaluation, at the current positions
   return rep;
 }
 

@@ -3,6 +3,7 @@
 /// The seam between the fluid service and its numerical models (STYLE 3.2).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -33,6 +34,13 @@ struct StepReport {
   double stable_dt = 0.0;          ///< smallest stability limit seen [time] (inf if none)
   std::string limiting_criterion;  ///< "acoustic" | "viscous" | "body_force" | "diffusion" |
                                    ///< "reaction" | "none"
+  /// min_density / max_density from the densities of every particle (left 0 if none).
+  void set_density_band(std::span<const double> rho) {
+    if (rho.empty()) return;
+    const auto [lo, hi] = std::minmax_element(rho.begin(), rho.end());
+    min_density = *lo;
+    max_density = *hi;
+  }
 };
 
 /// One fluid model. Input specification of the arrays:
