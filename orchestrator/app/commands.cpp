@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -326,33 +327,37 @@ int cmd_run(const CliOptions& o) {
       };
       char name[32];
       std::snprintf(name, sizeof name, "realization_%04d", r);
-      try {
-        const RunResult res = run_realization(scene, plan, o, static_cast<std::uint64_t>(r),
-                                              out / name, nullptr, base);
-        std::lock_guard lock(mutex);
-        if (!res.interrupted) pending.emplace(r, std::move(frames));
-        flush();
-        const int d = ++done;
-        const double el =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (!o.quiet) {
-          std::fprintf(stderr, "sadr: realization %d done (%d/%d), elapsed %.1f s, ETA %.1f s\n", r,
-                       d, r_count, el, el / d * (r_count - d));
-        }
-      } catch (const std::exception& e) {
+      RunResult res;
+      // Each attempt starts at t = 0 (the ensemble needs every frame): drop the frames of a
+      // failed one.
+      auto failure = run_ensemble_member(
+          scene, plan, o, r, out / name, false, base, [&frames] { frames.clear(); }, res);
+      std::lock_guard lock(mutex);
+      if (failure) {
         // Recorded; the other realizations go on (docs/sweeps.md: faults).
-        std::lock_guard lock(mutex);
-        failed.push_back({r, exit_code_of(e), e.what()});
-        std::fprintf(stderr, "sadr: realization %d failed: %s\n", r, e.what());
+        std::fprintf(stderr, "sadr: realization %d failed: %s\n", r, failure->reason.c_str());
+        failed.push_back(std::move(*failure));
         pending.emplace(r, Frames{});  // adds nothing; the later ones are added in order
         flush();
+        continue;
+      }
+      if (!res.interrupted) pending.emplace(r, std::move(frames));
+      flush();
+      const int d = ++done;
+      const double el =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (!o.quiet) {
+        std::fprintf(stderr, "sadr: realization %d done (%d/%d), elapsed %.1f s, ETA %.1f s\n", r,
+                     d, r_count, el, el / d * (r_count - d));
       }
     }
   };
   std::vector<std::thread> pool;
   for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
-  write_ensemble_manifest(out, scene, r_count, failed);
+  std::sort(failed.begin(), failed.end(),
+            [](const auto& x, const auto& y) { return x.realization < y.realization; });
+  write_ensemble_manifest(out, scene, r_count, o.retries, failed);
   ensure_directory(out / "ensemble");
   for (std::size_t k = 0; k < ensemble.frame_count(); ++k) {
     if (ensemble.realizations(k) == 0) continue;

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,7 @@ struct CliOptions {
   int realizations = 1;
   int jobs = 0;              ///< parallel realizations (0 = number of cores)
   int restarts = 0;          ///< --restart-on-failure N
+  int retries = 1;           ///< --retries N: extra attempts of a failed realization (-r, resume)
   double timeout_s = 120;    ///< per service call
   double stop_at = -1;       ///< checkpoint and stop at this simulated time (< 0: never)
   bool quiet = false;        ///< no progress display, plan or info lines
@@ -98,11 +101,25 @@ struct FailedRealization {
   int realization = 0;
   int exit_code = 0;
   std::string reason;
+  int attempts = 1;  ///< attempts made (1 + the retries used)
 };
+/// Realization `r` of an ensemble into `rd`, retried up to o.retries times
+/// when it fails (docs/sweeps.md, faults): each retry resumes from the last
+/// checkpoint when `from_checkpoint`, else starts at t = 0 with the failed
+/// attempt's frames and checkpoints removed. `before_attempt` runs before
+/// every attempt (e.g. to drop frames collected by base.on_frame). Returns the
+/// last failure, or nothing when an attempt ended (done or interrupted) with
+/// its result in `result`.
+std::optional<FailedRealization> run_ensemble_member(const Scene& scene, const Plan& plan,
+                                                     const CliOptions& o, int r,
+                                                     const std::filesystem::path& rd,
+                                                     bool from_checkpoint, const RunOptions& base,
+                                                     const std::function<void()>& before_attempt,
+                                                     RunResult& result);
 /// DIR/ensemble.json: scene, overrides, R and the failed realizations, for
 /// `sadr resume DIR` (ensemble_command.cpp).
 void write_ensemble_manifest(const std::filesystem::path& dir, const Scene& scene, int realizations,
-                             const std::vector<FailedRealization>& failed);
+                             int retries, const std::vector<FailedRealization>& failed);
 /// Prints the table of failed realizations and how to resume; returns the exit code (3).
 int report_failed_realizations(const std::filesystem::path& dir,
                                const std::vector<FailedRealization>& failed);

@@ -19,11 +19,14 @@
 namespace sadr::orchestrator {
 namespace fs = std::filesystem;
 
-void write_ensemble_manifest(const fs::path& dir, const Scene& scene, int realizations,
+void write_ensemble_manifest(const fs::path& dir, const Scene& scene, int realizations, int retries,
                              const std::vector<FailedRealization>& failed) {
   nlohmann::json f = nlohmann::json::array();
   for (const auto& x : failed) {
-    f.push_back({{"realization", x.realization}, {"exit_code", x.exit_code}, {"reason", x.reason}});
+    f.push_back({{"realization", x.realization},
+                 {"exit_code", x.exit_code},
+                 {"reason", x.reason},
+                 {"attempts", x.attempts}});
   }
   const nlohmann::json j{{"format", "sadr-ensemble"},
                          {"format_version", 1},
@@ -31,6 +34,7 @@ void write_ensemble_manifest(const fs::path& dir, const Scene& scene, int realiz
                          {"overrides", scene.overrides},
                          {"scene_hash", scene.source_hash},
                          {"realizations", realizations},
+                         {"retries", retries},
                          {"failed", f}};
   write_file_atomic(dir / "ensemble.json", j.dump(2) + "\n");
 }
@@ -38,14 +42,43 @@ void write_ensemble_manifest(const fs::path& dir, const Scene& scene, int realiz
 int report_failed_realizations(const fs::path& dir, const std::vector<FailedRealization>& failed) {
   std::fprintf(stderr,
                "sadr: %zu realizations failed (the ensemble/ files count the others in "
-               "their realizations column):\n  %-11s %-4s %s\n",
-               failed.size(), "realization", "exit", "reason");
+               "their realizations column):\n  %-11s %-8s %-4s %s\n",
+               failed.size(), "realization", "attempts", "exit", "reason");
   for (const auto& f : failed) {
-    std::fprintf(stderr, "  %-11d %-4d %s\n", f.realization, f.exit_code,
+    std::fprintf(stderr, "  %-11d %-8d %-4d %s\n", f.realization, f.attempts, f.exit_code,
                  f.reason.substr(0, f.reason.find('\n')).c_str());
   }
   std::fprintf(stderr, "sadr: run or resume them with: sadr resume %s\n", dir.string().c_str());
   return kExitServiceFailure;
+}
+
+std::optional<FailedRealization> run_ensemble_member(const Scene& scene, const Plan& plan,
+                                                     const CliOptions& o, int r, const fs::path& rd,
+                                                     bool from_checkpoint, const RunOptions& base,
+                                                     const std::function<void()>& before_attempt,
+                                                     RunResult& result) {
+  const fs::path cp = rd / "checkpoint" / std::string(kCheckpointManifestName);
+  for (int attempt = 1;; ++attempt) {
+    if (before_attempt) before_attempt();
+    try {
+      std::optional<LoadedCheckpoint> resume;
+      if (from_checkpoint && fs::exists(cp)) {
+        resume = load_checkpoint(cp, scene.source_hash);
+      } else if (attempt > 1) {  // from t = 0: nothing of the failed attempt stays
+        for (const auto* sub : {"frames", "checkpoint"}) fs::remove_all(rd / sub);
+      }
+      result = run_realization(scene, plan, o, static_cast<std::uint64_t>(r), rd,
+                               resume ? &*resume : nullptr, base);
+      return std::nullopt;
+    } catch (const std::exception& e) {
+      FailedRealization f{r, exit_code_of(e), e.what(), attempt};
+      if (attempt > o.retries || interrupt_requested()) return f;
+      std::fprintf(
+          stderr, "sadr: realization %d, attempt %d of %d failed (exit %d): %s; retrying%s\n", r,
+          attempt, o.retries + 1, f.exit_code, f.reason.substr(0, f.reason.find('\n')).c_str(),
+          from_checkpoint && fs::exists(cp) ? " from its last checkpoint" : " from t = 0");
+    }
+  }
 }
 
 int resume_ensemble(const CliOptions& o, const fs::path& dir) {
@@ -71,21 +104,21 @@ int resume_ensemble(const CliOptions& o, const fs::path& dir) {
       continue;
     }
     ++executed;
-    try {
-      const fs::path cp = rd / "checkpoint" / std::string(kCheckpointManifestName);
-      std::optional<LoadedCheckpoint> resume;
-      if (fs::exists(cp)) resume = load_checkpoint(cp, scene.source_hash);
-      RunOptions base;
-      base.progress = false;
-      run_realization(scene, plan, o, static_cast<std::uint64_t>(r), rd,
-                      resume ? &*resume : nullptr, base);
-      std::fprintf(stderr, "sadr: realization %d %s\n", r, resume ? "resumed and done" : "done");
-    } catch (const std::exception& e) {
-      failed.push_back({r, exit_code_of(e), e.what()});
-      std::fprintf(stderr, "sadr: realization %d failed: %s\n", r, e.what());
+    const bool resumed = fs::exists(rd / "checkpoint" / std::string(kCheckpointManifestName));
+    RunOptions base;
+    base.progress = false;
+    RunResult res;
+    if (auto f = run_ensemble_member(scene, plan, o, r, rd, true, base, {}, res)) {
+      std::fprintf(stderr, "sadr: realization %d failed: %s\n", r, f->reason.c_str());
+      failed.push_back(std::move(*f));
+    } else {
+      std::fprintf(stderr, "sadr: realization %d %s\n", r,
+                   res.interrupted ? "interrupted"
+                   : resumed       ? "resumed and done"
+                                   : "done");
     }
   }
-  write_ensemble_manifest(dir, scene, count, failed);
+  write_ensemble_manifest(dir, scene, count, o.retries, failed);
   std::fprintf(stderr, "sadr: resumed %d of %d realizations\n", executed, count);
   if (!failed.empty()) return report_failed_realizations(dir, failed);
   if (interrupt_requested()) return kExitInterrupted;

@@ -134,6 +134,13 @@ int main(int argc, char** argv) {
                   "from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX (cluster array jobs; "
                   "combine with 'sadr ensemble OUTPUT')");
   add_service_options(run);
+  auto add_retries_option = [&](CLI::App* cmd) {
+    cmd->add_option("--retries", o.retries,
+                    "ensembles: run a failed realization again up to N more times (as a "
+                    "sweep's retries; default 1)")
+        ->check(CLI::Range(0, 100));
+  };
+  add_retries_option(run);
 
   auto* resume =
       app.add_subcommand("resume", "continue a run from its checkpoint, bit-identically");
@@ -144,6 +151,7 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingPath);
   add_service_options(resume);
+  add_retries_option(resume);
 
   auto* ensemble = app.add_subcommand(
       "ensemble",

@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <set>
 #include <thread>
 
@@ -384,6 +385,85 @@ TEST(EnsembleCli, AFailedRealizationDoesNotStopTheOthersAndResumeCompletesIt) {
       << read_file(d / "b.log");
   for (const char* f : {"frame_000001.csv", "frame_000002.csv"}) {
     EXPECT_TRUE(read_file(d / "ref" / "ensemble" / f) == read_file(d / "e" / "ensemble" / f)) << f;
+  }
+  if (!HasFailure()) fs::remove_all(d);
+}
+
+/// A copy of sadr in DIR/bin whose ssa_service is a wrapper that fails to
+/// start (exit 9) for realization 1 the first `failures` times, then execs
+/// the real service: a transient fault of one realization (sadr starts the
+/// services next to its own executable; the endpoint ends in "-<realization>").
+std::string sadr_with_flaky_realization_1(const fs::path& d, int failures) {
+  const fs::path b = d / "bin";
+  fs::create_directories(b);
+  fs::copy_file(bin("sadr"), b / "sadr", fs::copy_options::overwrite_existing);
+  if (!fs::exists(b / "fluid_service"))
+    fs::create_symlink(bin("fluid_service"), b / "fluid_service");
+  std::ofstream w(b / "ssa_service");
+  w << "#!/bin/sh\n"
+       "for a in \"$@\"; do case \"$a\" in *-1)\n"
+       "  n=$(cat '"
+    << (d / "failures").string()
+    << "' 2>/dev/null || echo 0)\n"
+       "  if [ \"$n\" -lt "
+    << failures << " ]; then echo $((n + 1)) > '" << (d / "failures").string()
+    << "'; echo 'injected fault' >&2; exit 9; fi;;\n"
+       "esac; done\n"
+       "exec '"
+    << bin("ssa_service") << "' \"$@\"\n";
+  w.close();
+  fs::permissions(b / "ssa_service", fs::perms::owner_all);
+  return (b / "sadr").string() + " ";
+}
+
+TEST(EnsembleCli, AFailedRealizationIsRetriedUpToTheLimit) {
+  const fs::path d = scratch("ensemble-retry");
+  const fs::path scene =
+      write_scene(d, birth_death_scene(8, 400.0, 1.0, 0.4, "[0.2, 0.4]", "[csv]"));
+  ASSERT_EQ(run(bin("sadr") + " run " + scene.string() + " -q -r 3 -o " + (d / "ref").string(),
+                d / "ref.log"),
+            0)
+      << read_file(d / "ref.log");
+  // Realization 1 fails once: the default retry (--retries 1) completes the ensemble.
+  const std::string sadr = sadr_with_flaky_realization_1(d, 1);
+  ASSERT_EQ(
+      run(sadr + "run " + scene.string() + " -q -r 3 -j 2 -o " + (d / "a").string(), d / "a.log"),
+      0)
+      << read_file(d / "a.log");
+  EXPECT_NE(read_file(d / "a.log").find("realization 1, attempt 1 of 2 failed (exit 3)"),
+            std::string::npos)
+      << read_file(d / "a.log");
+  EXPECT_EQ(read_file(d / "failures"), "1\n");
+  for (const char* f : {"frame_000001.csv", "frame_000002.csv"}) {
+    EXPECT_TRUE(read_file(d / "ref" / "ensemble" / f) == read_file(d / "a" / "ensemble" / f)) << f;
+  }
+  // It fails three times: --retries 1 stops after two attempts and says so.
+  fs::remove(d / "failures");
+  const std::string flaky = sadr_with_flaky_realization_1(d, 3);
+  EXPECT_EQ(
+      run(flaky + "run " + scene.string() + " -q -r 3 -j 2 --retries 1 -o " + (d / "b").string(),
+          d / "b.log"),
+      3)
+      << read_file(d / "b.log");
+  EXPECT_EQ(read_file(d / "failures"), "2\n") << "two attempts, no more";
+  auto j = nlohmann::json::parse(read_file(d / "b" / "ensemble.json"));
+  ASSERT_EQ(j["failed"].size(), 1u) << j.dump();
+  EXPECT_EQ(j["failed"][0]["realization"], 1);
+  EXPECT_EQ(j["failed"][0]["attempts"], 2);
+  EXPECT_EQ(j["failed"][0]["exit_code"], 3);
+  EXPECT_NE(j["failed"][0]["reason"].get<std::string>().find("ssa_service"), std::string::npos)
+      << j.dump();
+  EXPECT_EQ(j["retries"], 1);
+  // `sadr resume DIR --retries 0` tries once more (the third failure), then the fourth start works.
+  EXPECT_EQ(run(flaky + "resume " + (d / "b").string() + " -q --retries 0", d / "c.log"), 3)
+      << read_file(d / "c.log");
+  ASSERT_EQ(run(flaky + "resume " + (d / "b").string() + " -q --retries 0", d / "e.log"), 0)
+      << read_file(d / "e.log");
+  EXPECT_EQ(read_file(d / "failures"), "3\n");
+  EXPECT_NE(read_file(d / "e.log").find("resumed 1 of 3 realizations"), std::string::npos)
+      << read_file(d / "e.log");
+  for (const char* f : {"frame_000001.csv", "frame_000002.csv"}) {
+    EXPECT_TRUE(read_file(d / "ref" / "ensemble" / f) == read_file(d / "b" / "ensemble" / f)) << f;
   }
   if (!HasFailure()) fs::remove_all(d);
 }
