@@ -28,7 +28,8 @@ open = open_output  # noqa: A001 - sadr.open(path), like xarray.open_dataset
 
 def __getattr__(name):
     # matplotlib only when a plot is asked for
-    if name in ("plot_particles", "plot_profile", "plot_series", "plot_sweep", "profile"):
+    if name in ("plot_particles", "plot_profile", "plot_series", "plot_sweep", "profile",
+                "sweep_summary"):
         from . import plots
 
         return getattr(plots, name)
@@ -41,5 +42,5 @@ __all__ = [
     "Region", "Run", "SadrError", "Scene", "ServiceFailure", "Sweep", "UsageError", "band", "find_sadr",
     "observe", "open", "open_output", "plot_particles", "plot_profile", "plot_series",
     "plot_sweep", "profile", "read_csv_frame", "read_ensemble_frame", "read_frame", "read_pvd",
-    "read_vtk_arrays", "read_vtk_frame", "run_cli",
+    "read_vtk_arrays", "read_vtk_frame", "run_cli", "sweep_summary",
 ]

@@ -1,8 +1,10 @@
 # SPDX-License-Identifier: MIT
 """`python3 -m sadr plot DIR [-o PNG] [--species S] [--parameter P]`: the
 overview figure of a run (sadr.plots.overview), or for a sweep directory the
-species total at the last frame against a swept parameter (sadr.plot_sweep),
-as a PNG; `python3 -m sadr series RUN`: the species totals per frame as CSV."""
+species total at the last frame against a swept parameter with its 95 % band
+(sadr.plot_sweep; the table plotted, sadr.sweep_summary, is printed as CSV), as
+a PNG; `python3 -m sadr series RUN`: the species totals per frame as CSV.
+The one home of the sweep summary plot (orchestrator/app/sweep_plot.py calls it)."""
 import argparse
 import sys
 from pathlib import Path
@@ -30,11 +32,24 @@ def main(argv=None) -> int:
     from .sweeps import Sweep
 
     if isinstance(run, Sweep) and args.command == "plot":
-        from .plots import plot_sweep
+        from .plots import plot_sweep, sweep_summary
 
+        if not run.parameters:
+            print(f"python3 -m sadr: error: {args.run}: the sweep has no parameters; nothing "
+                  "to plot against", file=sys.stderr)
+            return 1
         table = run.table()
-        species = args.species or next(c for c in table.columns[len(run.parameters) + 4:])
-        fig = plot_sweep(table, args.parameter or run.parameters[0], species)
+        names = list(table.columns[len(run.parameters) + 4:])
+        species = args.species or names[0]
+        param = args.parameter or run.parameters[0]
+        for what, value, allowed in (("--species", species, names),
+                                     ("--parameter", param, run.parameters)):
+            if value not in allowed:
+                print(f"python3 -m sadr: error: {what} {value}: allowed: {', '.join(allowed)}",
+                      file=sys.stderr)
+                return 1
+        sys.stdout.write(sweep_summary(table, param, species).to_csv(index=False))
+        fig = plot_sweep(table, param, species)
         out = args.output or args.run / "summary.png"
         fig.savefig(out, dpi=args.dpi)
         print(f"python3 -m sadr: wrote {out}")

@@ -135,26 +135,46 @@ def plot_series(data, *, ax=None, label=None, ylabel=None, title=None):
     return fig
 
 
-def plot_sweep(table, parameter: str, observable: str, *, time=None, confidence: float = 0.95,
-               ax=None):
-    """A sweep observable against its parameter from a tidy table (columns
-    ``parameter``, 'realization', 'time', ``observable``; Sweep.table): the mean
-    over realizations at ``time`` (default: the last time) with its t band.
-    Returns the Figure."""
+def sweep_summary(table, parameter: str, observable: str, *, time=None,
+                  confidence: float = 0.95):
+    """Per value of ``parameter`` in a tidy table (Sweep.table): the mean over
+    realizations of ``observable`` at ``time`` (default: the last time), the
+    ``confidence`` interval mean -+ t(0.5 + confidence / 2, n - 1) sem (NaN for
+    n = 1) and n. Returns a DataFrame with columns ``parameter``,
+    '<observable>_mean', 'ci_lo', 'ci_hi', 'realizations', sorted by parameter."""
+    import pandas as pd
+
     from .series import t_quantile
 
-    fig, ax = _axes(ax)
     if time is None:
         time = table["time"].max()
     at = table[np.isclose(table["time"], time, rtol=0, atol=1e-12 * max(1.0, abs(time)))]
     if at.empty:
-        raise ValueError(f"plot_sweep: no rows at time {time}")
+        raise ValueError(f"sweep_summary: no rows at time {time}")
     g = at.groupby(parameter)[observable]
     mean, std, n = g.mean(), g.std(ddof=1), g.count()
-    x = mean.index.to_numpy(dtype=float)
-    half = np.array([t_quantile(0.5 + confidence / 2, k - 1) if k > 1 else np.nan for k in n])
-    half = half * std.to_numpy() / np.sqrt(n.to_numpy())
-    ax.errorbar(x, mean.to_numpy(), yerr=half, fmt="o-", capsize=3,
+    t = np.array([t_quantile(0.5 + confidence / 2, k - 1) if k > 1 else np.nan for k in n])
+    half = t * std.to_numpy() / np.sqrt(n.to_numpy())
+    return pd.DataFrame({parameter: mean.index.to_numpy(dtype=float),
+                         f"{observable}_mean": mean.to_numpy(),
+                         "ci_lo": mean.to_numpy() - half, "ci_hi": mean.to_numpy() + half,
+                         "realizations": n.to_numpy()})
+
+
+def plot_sweep(table, parameter: str, observable: str, *, time=None, confidence: float = 0.95,
+               ax=None):
+    """A sweep observable against its parameter from a tidy table (columns
+    ``parameter``, 'realization', 'time', ``observable``; Sweep.table): the mean
+    over realizations at ``time`` (default: the last time) with its t band
+    (sweep_summary). Returns the Figure."""
+    fig, ax = _axes(ax)
+    if time is None:
+        time = table["time"].max()
+    s = sweep_summary(table, parameter, observable, time=time, confidence=confidence)
+    mean = s[f"{observable}_mean"].to_numpy()
+    n = s["realizations"]
+    ax.errorbar(s[parameter].to_numpy(), mean, yerr=s["ci_hi"].to_numpy() - mean, fmt="o-",
+                capsize=3,
                 label=f"mean, {confidence:.0%} band (n = {int(n.min())}..{int(n.max())})")
     ax.set_xlabel(parameter)
     ax.set_ylabel(f"{observable} at t = {time:g}")

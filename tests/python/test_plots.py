@@ -63,6 +63,15 @@ def test_sweep_plot(tmp_path):
     np.testing.assert_array_equal(line.get_xdata(), [1.0, 2.0, 4.0])
     np.testing.assert_allclose(line.get_ydata(), table.groupby("k")["A"].mean().to_numpy())
     png(fig, tmp_path / "sweep.png")
+    # the table it plots (printed by `python3 -m sadr plot SWEEP`): 95 % t interval, n = 5
+    from scipy import stats
+
+    s = sadr.sweep_summary(table, "k", "A")
+    assert s["realizations"].tolist() == [5, 5, 5]
+    a = table[table["k"] == 2.0]["A"].to_numpy()
+    half = stats.t.ppf(0.975, 4) * a.std(ddof=1) / np.sqrt(5)
+    np.testing.assert_allclose(s.loc[1, ["A_mean", "ci_lo", "ci_hi"]].to_numpy(dtype=float),
+                               [a.mean(), a.mean() - half, a.mean() + half], rtol=1e-14)
 
 
 def test_overview_and_module_cli(tmp_path, poiseuille_runs):
