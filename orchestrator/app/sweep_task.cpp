@@ -4,7 +4,9 @@
 // JOB_COMPLETION_INDEX (Kubernetes Indexed Job). The run's scene is the base
 // scene with its point's overrides and `seed` = the point seed; it resumes
 // from its checkpoint when one is there. It writes only its own directory,
-// ending with result.json (state, exit code, reason).
+// ending with result.json (state, exit code, reason, CPU seconds).
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -40,6 +42,18 @@ std::size_t task_index(const CliOptions& o) {
                           "' is not a run index (a whole number >= 0)");
   }
   return static_cast<std::size_t>(i);
+}
+
+/// User + sys CPU seconds of this process and of the children it reaped (the services).
+double cpu_seconds() {
+  double s = 0;
+  for (const int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
+    rusage u{};
+    if (getrusage(who, &u) != 0) return -1;
+    s += static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  }
+  return s;
 }
 
 }  // namespace
@@ -88,6 +102,7 @@ int cmd_sweep_task(const CliOptions& o) {
     out.exit_code = report_failure(e);
     out.reason = e.what();
   }
+  out.cpu_s = cpu_seconds();
   write_run_outcome(rd, out);
   return out.exit_code;
 }

@@ -37,10 +37,14 @@ std::string_view to_string(RunState state) {
 }
 
 void write_run_outcome(const fs::path& dir, const RunOutcome& o) {
-  const json j{
-      {"state", to_string(o.state)},     {"exit_code", o.exit_code}, {"reason", o.reason},
-      {"scene_hash", o.scene_hash},      {"resumed", o.resumed},     {"attempts", o.attempts},
-      {"written_utc", utc_now_iso8601()}};
+  const json j{{"state", to_string(o.state)},
+               {"exit_code", o.exit_code},
+               {"reason", o.reason},
+               {"scene_hash", o.scene_hash},
+               {"resumed", o.resumed},
+               {"attempts", o.attempts},
+               {"cpu_s", o.cpu_s},
+               {"written_utc", utc_now_iso8601()}};
   write_file_atomic(dir / "result.json", j.dump(2) + "\n");
 }
 
@@ -56,6 +60,7 @@ std::optional<RunOutcome> read_run_outcome(const fs::path& dir) {
     o.scene_hash = j.at("scene_hash").get<std::string>();
     o.resumed = j.value("resumed", false);
     o.attempts = j.value("attempts", 1);
+    o.cpu_s = j.value("cpu_s", -1.0);
     return o;
   } catch (const std::exception&) {
     return std::nullopt;  // a torn or foreign file: the run is not finished

@@ -30,6 +30,9 @@ struct RunOutcome {
   std::string scene_hash;  ///< of the effective scene that ran
   bool resumed = false;    ///< continued from a checkpoint
   int attempts = 1;        ///< workers started for this run so far (this one included)
+  /// CPU seconds (user + sys) of this attempt's worker and the services it
+  /// started and reaped; < 0 when not measured.
+  double cpu_s = -1;
 };
 /// Writes `dir`/result.json atomically.
 void write_run_outcome(const std::filesystem::path& dir, const RunOutcome& outcome);
