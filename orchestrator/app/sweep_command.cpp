@@ -87,7 +87,15 @@ void aggregate(SweepManifest& m, const fs::path& dir, bool quiet) {
     std::ofstream obs(out / "observables.csv.tmp", std::ios::binary);
     obs << header;
     try {
-      const PointAggregate pa = aggregate_point(runs, prefixes, out, "aggregate", obs);
+      // The scene's named observables (output.observables), from the scene the runs ran.
+      const Scene scene =
+          load_scene(m.base_scene, m.overrides_of(m.runs[p.index * m.realizations]));
+      if (scene.source_hash != *hashes.begin()) {
+        throw InvalidArgument("the scene " + m.base_scene + " changed since its runs ran (hash " +
+                              scene.source_hash + ", the runs ran " + *hashes.begin() + ")");
+      }
+      const PointAggregate pa =
+          aggregate_point(runs, prefixes, out, "aggregate", obs, named_observables(scene));
       obs.close();
       fs::rename(out / "observables.csv.tmp", out / "observables.csv");
       a["state"] = "done";

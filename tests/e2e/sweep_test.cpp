@@ -12,7 +12,9 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "cli_test_support.hpp"
@@ -127,6 +129,72 @@ TEST(SweepCli, GridAggregatesEqualNumpyAndDoNotDependOnTheWorkers) {
   // Running it again runs nothing.
   ASSERT_EQ(run(sweep_cmd(sweep, d / "a"), d / "c.log"), 0) << read_file(d / "c.log");
   EXPECT_NE(read_file(d / "c.log").find("executed 0 runs, skipped 8 finished"), std::string::npos)
+      << read_file(d / "c.log");
+  if (!HasFailure()) fs::remove_all(d);
+}
+
+TEST(SweepCli, SceneNamedObservablesAreInTheTidyTableAndEqualTheFrames) {
+  const fs::path d = scratch("sweep-observables");
+  std::string scene = birth_death_scene(8, 400.0, 1.0, 0.4, "[0.2, 0.4]", "[csv]");
+  scene = replace_once(scene, "particles:",
+                       "regions:\n  - {name: left, shape: box, lower: [0.0], upper: [0.5]}\n"
+                       "particles:");
+  scene = replace_once(scene, "formats: [csv]}",
+                       "formats: [csv], observables: [{name: A_left, species: A, region: left}, "
+                       "{name: A_mean, species: A, stat: mean}]}");
+  write_scene(d, scene);
+  const fs::path sweep = write_sweep(d,
+                                     "realizations: 2\nkeep: all\nparameters:\n  zip:\n"
+                                     "    reactions[death].rate: [1, 2]\n");
+  ASSERT_EQ(run(sweep_cmd(sweep, d / "s", "-q"), d / "a.log"), 0) << read_file(d / "a.log");
+  // Every (run, frame) has its A row, then A_left and A_mean, equal to what the frame holds.
+  std::istringstream obs(read_file(d / "s" / "observables.csv"));
+  std::string line;
+  std::getline(obs, line);
+  ASSERT_EQ(line, "point,realization,reactions[death].rate,frame,time,species,total");
+  std::map<std::string, double> got;  // "point,realization,frame,name" -> value
+  int rows = 0;
+  while (std::getline(obs, line)) {
+    std::vector<std::string> c;
+    std::istringstream r(line);
+    for (std::string cell; std::getline(r, cell, ',');) c.push_back(cell);
+    ASSERT_EQ(c.size(), 7u) << line;
+    got[c[0] + "," + c[1] + "," + c[3] + "," + c[5]] = std::stod(c[6]);
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2 * 2 * 3 * 3) << "points x realizations x frames x (A, A_left, A_mean)";
+  for (int p = 0; p < 2; ++p) {
+    for (int r = 0; r < 2; ++r) {
+      char dir[32];
+      std::snprintf(dir, sizeof dir, "runs/p%04d_r%04d", p, r);
+      const auto fr = frames(d / "s" / dir);
+      ASSERT_EQ(fr.size(), 3u);
+      for (std::size_t k = 0; k < fr.size(); ++k) {
+        const CsvFrame f = read_csv(fr[k]);
+        const auto a = f.column("A"), x = f.column("x");
+        double left = 0, all = 0;
+        for (std::size_t i = 0; i < a.size(); ++i) {
+          all += a[i];
+          if (x[i] <= 0.5) left += a[i];
+        }
+        const std::string key =
+            std::to_string(p) + "," + std::to_string(r) + "," + std::to_string(k) + ",";
+        EXPECT_EQ(got.at(key + "A"), all) << key;
+        EXPECT_EQ(got.at(key + "A_left"), left) << key;
+        EXPECT_DOUBLE_EQ(got.at(key + "A_mean"), all / static_cast<double>(a.size())) << key;
+      }
+    }
+  }
+  EXPECT_GT(got.at("0,0,2,A_left"), 0) << "the region holds molecules";
+  // A bad observable is refused at the scene line, naming what is allowed.
+  write_scene(d, replace_once(scene, "species: A, region: left", "species: B, region: left"));
+  EXPECT_EQ(run(bin("sadr") + " validate " + (d / "scene.yaml").string(), d / "b.log"), 1);
+  EXPECT_NE(read_file(d / "b.log").find("species 'B' is not written to the frames"),
+            std::string::npos)
+      << read_file(d / "b.log");
+  write_scene(d, replace_once(scene, "name: A_left", "name: A"));
+  EXPECT_EQ(run(bin("sadr") + " validate " + (d / "scene.yaml").string(), d / "c.log"), 1);
+  EXPECT_NE(read_file(d / "c.log").find("'A' cannot name an observable"), std::string::npos)
       << read_file(d / "c.log");
   if (!HasFailure()) fs::remove_all(d);
 }

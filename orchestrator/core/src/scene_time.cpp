@@ -12,9 +12,11 @@ namespace sadr::orchestrator::detail {
 namespace {
 constexpr std::array<std::string_view, 3> kTimeKeys{"coupling_step", "end", "splitting"};
 constexpr std::array<std::string_view, 2> kSplittings{"lie", "strang"};
-constexpr std::array<std::string_view, 8> kOutputKeys{"directory",        "every",       "times",
-                                                      "include_initial",  "formats",     "species",
-                                                      "checkpoint_every", "vtk_encoding"};
+constexpr std::array<std::string_view, 9> kOutputKeys{
+    "directory",        "every",        "times",      "include_initial", "formats", "species",
+    "checkpoint_every", "vtk_encoding", "observables"};
+constexpr std::array<std::string_view, 4> kObservableKeys{"name", "species", "region", "stat"};
+constexpr std::array<std::string_view, 2> kStats{"total", "mean"};
 constexpr std::array<std::string_view, 2> kVtkEncodings{"binary", "ascii"};
 constexpr std::array<std::string_view, 3> kFormats{"vtu", "vtp", "csv"};
 
@@ -35,6 +37,46 @@ std::vector<double> normalise_times(std::vector<double> times, double end, doubl
   out.back() = end;
   return out;
 }
+/// output.observables: [{name, species, region (default all), stat: total|mean}].
+void read_observables(SceneContext& ctx, const Field& out) {
+  YamlReader& r = ctx.reader;
+  Scene& s = ctx.scene;
+  const Field list = YamlReader::child(out, "observables");
+  if (!YamlReader::present(list) || !r.expect_sequence(list)) return;
+  for (std::size_t k = 0; k < list.node.size(); ++k) {
+    const Field f = YamlReader::element(list, k);
+    if (!r.expect_map(f, kObservableKeys)) continue;
+    ObservableSpec o;
+    const auto name = r.string(f, "name", true);
+    const auto species = r.string(f, "species", true);
+    if (!name || !species) continue;
+    o.name = *name;
+    o.species = *species;
+    const bool clash = s.find_species(o.name) != nullptr ||
+                       std::any_of(s.output.observables.begin(), s.output.observables.end(),
+                                   [&](const ObservableSpec& x) { return x.name == o.name; });
+    if (!valid_identifier(o.name) || clash) {
+      r.error(YamlReader::child(f, "name"),
+              "'" + o.name +
+                  "' cannot name an observable; allowed: [A-Za-z_][A-Za-z0-9_]*, not a species "
+                  "and not another observable (they share the species column of "
+                  "observables.csv)");
+      continue;
+    }
+    if (std::find(s.output.species.begin(), s.output.species.end(), o.species) ==
+        s.output.species.end()) {
+      r.error(YamlReader::child(f, "species"),
+              "species '" + o.species + "' is not written to the frames; allowed: one of " +
+                  "output.species (the observable is computed from the CSV frames)");
+      continue;
+    }
+    o.region = r.string(f, "region", false).value_or(std::string(kAllRegion));
+    if (!lookup_region(ctx, YamlReader::child(f, "region"), o.region)) continue;
+    o.mean = r.choice(f, "stat", kStats, false, "statistic").value_or("total") == "mean";
+    s.output.observables.push_back(std::move(o));
+  }
+}
+
 }  // namespace
 
 void read_time_and_output(SceneContext& ctx, const Field& root) {
@@ -128,6 +170,7 @@ void read_time_and_output(SceneContext& ctx, const Field& root) {
     if (auto enc = r.choice(out, "vtk_encoding", kVtkEncodings, false, "VTK encoding")) {
       s.output.vtk_encoding = *enc == "ascii" ? VtkEncoding::kAscii : VtkEncoding::kBinary;
     }
+    read_observables(ctx, out);
   } else {
     for (const auto& sp : s.species) s.output.species.push_back(sp.name);
   }

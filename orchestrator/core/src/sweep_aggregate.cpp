@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/orchestrator/sweep_aggregate.hpp"
 
+#include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <limits>
@@ -11,6 +12,7 @@
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/ensemble_accumulator.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
+#include "sadr/orchestrator/region.hpp"
 #include "sadr/orchestrator/sweep_frames.hpp"
 
 namespace sadr::orchestrator {
@@ -39,11 +41,66 @@ std::vector<SpeciesColumn> columns_of(const CsvFrame& f) {
   return c;
 }
 
+/// Appends "<prefix>,k,t,<name>,<total>" to `out`.
+void tidy_row(std::ostream& out, const std::string& prefix, std::size_t k, double t,
+              const std::string& name, double value) {
+  std::string row = prefix + ',' + std::to_string(k) + ',';
+  append_number(row, t);
+  row += ',' + name + ',';
+  append_number(row, value);
+  out << row << '\n';
+}
+
+/// The named observables of one frame, as tidy rows.
+void named_rows(std::ostream& out, const std::string& prefix, std::size_t k, CsvFrame& f,
+                const NamedObservables& named, const fs::path& path) {
+  const int saved = f.particles.dimension;
+  f.particles.dimension = named.dimension;  // the file has 3 axes; regions use the scene's
+  for (std::size_t o = 0; o < named.specs.size(); ++o) {
+    const ObservableSpec& spec = named.specs[o];
+    Region region = named.regions[o];
+    resolve_membership(region, f.particles, named.tolerance);
+    const auto col = std::find_if(f.species.begin(), f.species.end(),
+                                  [&](const SpeciesColumn& c) { return c.name == spec.species; });
+    if (col == f.species.end()) {
+      throw InvalidArgument(path.string() + ": no column '" + spec.species + "' for observable '" +
+                            spec.name + "'");
+    }
+    double sum = 0;
+    for (const std::uint32_t i : region.particles) sum += col->values[i];
+    if (spec.mean && region.particles.empty()) {
+      throw InvalidArgument(path.string() + ": observable '" + spec.name + "': region '" +
+                            spec.region +
+                            "' holds no particle in this frame; a mean needs at least one");
+    }
+    tidy_row(out, prefix, k, f.time, spec.name,
+             spec.mean ? sum / static_cast<double>(region.particles.size()) : sum);
+  }
+  f.particles.dimension = saved;
+}
+
 }  // namespace
+
+NamedObservables named_observables(const Scene& scene) {
+  NamedObservables n;
+  n.dimension = scene.box.dimension;
+  double extent = 0.0;
+  for (int a = 0; a < scene.box.dimension; ++a) extent = std::max(extent, scene.box.length(a));
+  n.tolerance = 1e-9 * std::max(extent, 1e-300);
+  for (const auto& spec : scene.output.observables) {
+    n.specs.push_back(spec);
+    const Region* rg = scene.find_region(spec.region);
+    Region all;
+    all.name = "all";
+    n.regions.push_back(rg ? *rg : all);  // "all" is not in scene.regions
+  }
+  return n;
+}
 
 PointAggregate aggregate_point(std::span<const fs::path> runs,
                                std::span<const std::string> prefixes, const fs::path& out,
-                               const std::string& name, std::ostream& observables) {
+                               const std::string& name, std::ostream& observables,
+                               const NamedObservables& named) {
   if (runs.empty()) throw InvalidArgument("aggregate: no runs");
   PointAggregate result;
   std::optional<EnsembleAccumulator> acc;
@@ -95,13 +152,9 @@ PointAggregate aggregate_point(std::span<const fs::path> runs,
       for (const auto& s : f.species) {
         double total = 0;
         for (double v : s.values) total += v;
-        observables << prefixes[r] << ',' << k << ',';
-        std::string num;
-        append_number(num, f.time);
-        num += ',' + s.name + ',';
-        append_number(num, total);
-        observables << num << '\n';
+        tidy_row(observables, prefixes[r], k, f.time, s.name, total);
       }
+      named_rows(observables, prefixes[r], k, f, named, path);
       if (r == 0) first.emplace(k, std::move(f));
     }
   }

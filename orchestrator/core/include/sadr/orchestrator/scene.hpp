@@ -115,6 +115,16 @@ struct TimeSettings {
 enum class OutputFormat { kVtu, kVtp, kCsv };
 std::string_view to_string(OutputFormat format);
 
+/// A scalar the scene names for the sweep's observables.csv (output.observables):
+/// per frame, the sum (`mean` false) or the mean over the particles of `region`
+/// (at that frame's positions) of the species column `species`.
+struct ObservableSpec {
+  std::string name;
+  std::string species;
+  std::string region = "all";
+  bool mean = false;
+};
+
 struct OutputSettings {
   std::string directory;      ///< "" = chosen by the CLI
   std::vector<double> times;  ///< sorted, unique, in [0, end], always ends with `end` [time]
@@ -122,6 +132,7 @@ struct OutputSettings {
   std::vector<std::string> species;  ///< species written per frame (default all)
   double checkpoint_every = 0.0;     ///< simulated time between checkpoints; 0 = only on signal
   VtkEncoding vtk_encoding = VtkEncoding::kBinary;  ///< .vtu/.vtp array storage
+  std::vector<ObservableSpec> observables;          ///< named scalars (sweeps)
 };
 
 enum class JumpConvention { kSymmetric, kVolume };

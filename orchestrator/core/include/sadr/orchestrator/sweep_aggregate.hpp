@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "sadr/orchestrator/scene.hpp"
+
 namespace sadr::orchestrator {
 
 struct PointAggregate {
@@ -29,17 +31,30 @@ struct PointAggregate {
   std::vector<std::string> notes;
 };
 
+/// The scene's named observables (output.observables), with their regions,
+/// ready for aggregate_point.
+struct NamedObservables {
+  std::vector<ObservableSpec> specs;
+  std::vector<Region> regions;  ///< one per spec; membership is recomputed per frame
+  int dimension = 3;
+  double tolerance = 0;  ///< region boundary tolerance [length], as the scene loader's
+};
+NamedObservables named_observables(const Scene& scene);
+
 /// Aggregates the CSV frames of `runs` (run directories, realization order)
 /// into `out` (frame_NNNNNN.csv, frame_NNNNNN.vtu, `name`.pvd). Every run
 /// must have the same frames as the first one, with the same particles.
 /// For each run and frame, appends the species totals to `observables` as
-/// tidy rows "<prefix of the run>,frame,time,species,total".
+/// tidy rows "<prefix of the run>,frame,time,species,total", then one row per
+/// named observable "<prefix>,frame,time,<observable name>,<value>", its
+/// region's particles taken at that frame's positions (a mean over a region
+/// that holds no particle at a frame is refused, naming both).
 /// @param prefixes one CSV prefix per run (e.g. "0,2,0.1" for point, realization, value)
 /// @throws sadr::InvalidArgument naming the run and frame that do not fit.
 PointAggregate aggregate_point(std::span<const std::filesystem::path> runs,
                                std::span<const std::string> prefixes,
                                const std::filesystem::path& out, const std::string& name,
-                               std::ostream& observables);
+                               std::ostream& observables, const NamedObservables& named = {});
 
 /// The two-sided 95 % Student t quantile for `n` samples (n - 1 degrees of
 /// freedom): mean +- t sem is the 95 % confidence interval. NaN for n < 2.
