@@ -3,8 +3,17 @@
 """Regenerates docs/validation.md and its plots (docs/validation/*.png) in one go.
 
     bench/validation/report.py --quick   # about 20 min on 2 cores
-    bench/validation/report.py --full    # hours (Table 1 SSA at N_b = 1e4, R = 100, N = 65)
+    bench/validation/report.py --full    # 1-2 hours (see below)
         [--build build/release] [--without BIN] [--out docs]
+
+--full runs Table 1's SSA at R = 100 for N = 17/33/65 and N_b = 1e2/1e3/1e4
+(plus t = 4 at N_b = 1e3): 0.83 h of CPU projected from the per-realization
+CPU costs measured on 2026-12-01 (SSA_COST_PER_REALIZATION below, loaded
+machine; the ensembles use both cores, so about half that in wall time on a
+quiet machine), of which N = 65, N_b = 1e4 alone is 100 x 16.9 s; then every
+validation binary (the tDPD and open-channel ones are not timed here) and the
+sweeps at their full sizes. It prints its SSA projection when it starts.
+--full has not been run yet.
 
 Needs a build with the tests and benchmarks (cmake --preset release; the
 default), /usr/bin/python3 with numpy and matplotlib (deploy/install-deps.sh).
@@ -19,8 +28,12 @@ window for figures to quote. The pieces:
   * drawert2019 Table 1: deterministic (AnnihilationValidation + the
     fluid_error_sweep benchmark) and SSA (annihilation_table1.py) with a
     work-precision diagram against the paper's points and the paper code's cost;
-  * Poiseuille start-up error against resolution (fluid_error_sweep) and the
-    example's centre-line speed (poiseuille_example.py);
+  * Poiseuille start-up error against resolution (fluid_error_sweep), against
+    resolution and sound speed through `sadr sweep` (poiseuille_sweep.py), and
+    the example's centre-line speed (poiseuille_example.py);
+  * the coupled stochastic case (a tracer in a flow) against R, resolution and
+    tau through `sadr sweep` (coupled_tracer.py);
+  * where tau matters in Table 1's SSA column (annihilation_table1.tau_independence);
   * Lie vs Strang against the exact continuous answer, observed orders
     (splitting_order.py);
   * the plan's skips with and without (skip_bench.py; needs a build from before
@@ -38,7 +51,9 @@ import tempfile
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from measure import ROOT, commit, run_measured  # noqa: E402
 import annihilation_table1  # noqa: E402
+import coupled_tracer  # noqa: E402
 import poiseuille_example  # noqa: E402
+import poiseuille_sweep  # noqa: E402
 import splitting_order  # noqa: E402
 import wp_plots  # noqa: E402
 
@@ -47,6 +62,26 @@ PAPER_SDPD = {17: 1.856e-4, 33: 1.698e-4, 65: 2.325e-4}
 PAPER_SSA = {17: 7.285e-4, 33: 5.334e-4, 65: 6.644e-4}  # 100 realizations
 PAPER_SSA_ONE = {17: 3.5e-3, 33: 2.6e-3, 65: 1.4e-3}  # one realization
 PAPER_COST_ONE = {17: 0.72, 33: 1.22, 65: 6.08}  # s, one realization of 10,000 steps
+
+# Table 1 SSA: CPU seconds per realization to t = 1 (sadr + services, os.wait4). N = 17:
+# the --quick run at 1c5522f; N = 33 / 65: R = 1-2 runs on 2026-12-01 at load ~13 on 2 cores
+# (upper bounds). The --full projection uses them.
+SSA_COST_PER_REALIZATION = {(17, 1e2): 0.0087, (17, 1e3): 0.038, (17, 1e4): 0.28,
+                            (33, 1e2): 0.033, (33, 1e3): 0.24, (33, 1e4): 2.17,
+                            (65, 1e2): 0.19, (65, 1e3): 1.76, (65, 1e4): 16.9}
+
+# N = 33 / 65 at the paper's R = 100 with N_b = 1e3, and N = 33 at N_b = 1e4 (about 6 min of
+# CPU together); N = 65 at N_b = 1e4 and R = 100 is --full only.
+QUICK_SSA_CASES = [(17, 1e3, 30, 1.0), (33, 1e3, 100, 1.0), (65, 1e3, 100, 1.0),
+                   (17, 1e4, 10, 1.0), (33, 1e4, 100, 1.0), (17, 1e2, 30, 1.0), (17, 1e3, 30, 4.0)]
+FULL_SSA_CASES = ([(n, nb, 100, 1.0) for n in (17, 33, 65) for nb in (1e2, 1e3, 1e4)] +
+                  [(n, 1e3, 100, 4.0) for n in (17, 33, 65)])
+
+
+def projected_cpu_s(cases):
+    """CPU seconds the SSA cases (N, N_b, R, t_end) will take, from SSA_COST_PER_REALIZATION."""
+    return sum(SSA_COST_PER_REALIZATION.get((n, nb), 30.0) * r * end for n, nb, r, end in cases)
+
 
 # (id, binary under build/tests, gtest filter, in --quick, reference, paper figure, docs)
 GTESTS = [
@@ -167,19 +202,36 @@ def main():
     # Table 1 SSA: one ensemble per (N, N_b); the error of the first r realizations.
     # (N, N_b, R, end): t = 1 s is the paper code's 10,000 steps of 1e-4 s (its quoted cost);
     # t = 4 s is steady (the t = inf reference).
-    ssa_cases = ([(17, 1e3, 30, 1.0), (33, 1e3, 30, 1.0), (17, 1e4, 10, 1.0), (17, 1e2, 30, 1.0),
-                  (17, 1e3, 30, 4.0)] if quick else
-                 [(n, nb, 100, 1.0) for n in (17, 33, 65) for nb in (1e2, 1e3, 1e4)] +
-                 [(n, 1e3, 100, 4.0) for n in (17, 33, 65)])
+    ssa_cases = QUICK_SSA_CASES if quick else FULL_SSA_CASES
     if a.ssa:
         ssa_cases = [(int(n), float(nb), int(r), float(t)) for n, nb, r, t in
                      (c.split(":") for c in a.ssa.split(","))]
+    step(f"projected CPU time of the Table 1 SSA cases: {projected_cpu_s(ssa_cases) / 3600:.1f} h "
+         "(SSA_COST_PER_REALIZATION)")
+    data["ssa_projection"] = {
+        "per_realization": [[n, nb, v] for (n, nb), v in sorted(SSA_COST_PER_REALIZATION.items())],
+        "full_cpu_h": projected_cpu_s(FULL_SSA_CASES) / 3600}
     data["ssa"] = []
     for np_, nb, r, end in ssa_cases:
         step(f"Table 1 SSA N={np_} N_b={nb:g} R={r} t={end:g}")
         res = annihilation_table1.realization_errors(str(sadr), np_, nb, r, end=end)
         res["errors"] = {int(k): v for k, v in res["errors"].items()}
         data["ssa"].append(res)
+
+    step("Table 1 SSA: coupling step tau")
+    data["table1_tau"] = annihilation_table1.tau_independence(str(sadr))
+
+    step("poiseuille sweep (resolution x sound speed, sadr sweep)")
+    data["poiseuille_sweep"] = poiseuille_sweep.run(
+        build / "bin", poiseuille_sweep.QUICK_DX if quick else poiseuille_sweep.FULL_DX)
+    data["poiseuille_sweep"]["dt_check"] = poiseuille_sweep.dt_check(build / "bin")
+    poiseuille_sweep.plot(data["poiseuille_sweep"], figs / "poiseuille_c0_work_precision.png")
+
+    step("coupled tracer (R x resolution, tau; sadr sweep)")
+    data["coupled_tracer"] = coupled_tracer.run(
+        build / "bin", coupled_tracer.QUICK_DX if quick else coupled_tracer.FULL_DX,
+        coupled_tracer.QUICK_R if quick else coupled_tracer.FULL_R)
+    coupled_tracer.plot(data["coupled_tracer"], figs / "coupled_tracer.png")
 
     step("poiseuille example")
     data["poiseuille_example"] = poiseuille_example.measure(build / "bin")

@@ -24,6 +24,16 @@ def mark_front(ax, front, label):
                   label=label)
 
 
+def finish(fig, axes, path, legend_size=7):
+    """Grid and legend on every axes, tight layout, saved to `path` (PNG), closed."""
+    for ax in axes:
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=legend_size)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def det_points(d, np_):
     return [(r["cpu_s"], r["error"]) for r in d["sweep"]["rows"]
             if r["case"].startswith("annihilation") and r["res"] == np_ and r["cpu_s"] > 0]

@@ -2,6 +2,7 @@
 """The markdown of docs/validation.md, from the data report.py collected."""
 import re
 
+import wp_sweeps
 from wp_plots import cheapest_at, det_points, ssa_noise, ssa_points
 
 
@@ -55,8 +56,11 @@ def render(d, plots, cmd, rev, started, elapsed, build, quick, paper_sdpd, paper
       f"{elapsed / 60:.1f} min, build `{build.name}`. Do not edit: regenerate it.\n")
     w("* `bench/validation/report.py --quick`: about 20 minutes on 2 cores (reduced ensembles, "
       "the slow tDPD and open-channel validations left out).")
+    proj = d.get("ssa_projection")
     w("* `bench/validation/report.py --full`: **hours** (every validation binary; Table 1 SSA "
-      "at N = 17/33/65, N_b = 1e2/1e3/1e4, R = 100).")
+      "at N = 17/33/65, N_b = 1e2/1e3/1e4, R = 100"
+      + (f": about {proj['full_cpu_h']:.1f} h of CPU for the SSA cases alone, projected from "
+         "the measured cost per realization below" if proj else "") + "; not run yet).")
     w("* Reduced versions of all of these stay in `ctest -L validation`.\n")
     w("**Cost is CPU time** (user + system of `sadr` and the services it starts, or of the test "
       "binary: `os.wait4`, `bench/validation/measure.py`). The machine this was generated on "
@@ -120,6 +124,11 @@ def render(d, plots, cmd, rev, started, elapsed, build, quick, paper_sdpd, paper
           f"{c['cpu_s'] / c['realizations']:.3f} | {errs} |")
     w("")
 
+    proj = d.get("ssa_projection")
+    if proj:
+        L += wp_sweeps.ssa_cost(d, {(n, nb): v for n, nb, v in proj["per_realization"]},
+                                proj["full_cpu_h"])
+
     # Poiseuille.
     w("## Work-precision: Poiseuille start-up\n")
     if "poiseuille" in plots:
@@ -130,8 +139,8 @@ def render(d, plots, cmd, rev, started, elapsed, build, quick, paper_sdpd, paper
             w(f"| {r['res']} | {r['dt']:.3g} | {e(r['error'])} | {r['cpu_s']:.3f} |")
     w("\nThe error is set by the resolution (first order, Morris walls); the sub-step does not "
       "change it (the viscous limit already resolves the start-up), so the cheapest run per "
-      "resolution is at the stability limit. The sound-speed (weak-compressibility) axis is "
-      "not swept yet (c_0 = 40 u_max here).\n")
+      "resolution is at the stability limit (c_0 = 40 u_max here; the sound-speed axis is the "
+      "`sadr sweep` section below).\n")
     p = d["poiseuille_example"]
     w("`examples/poiseuille_tracer_2d.yaml` (stationary wall particles; "
       "`bench/validation/poiseuille_example.py`): a parabola fitted to u_x of the fluid "
@@ -143,6 +152,10 @@ def render(d, plots, cmd, rev, started, elapsed, build, quick, paper_sdpd, paper
       f"(g H_eff^2/(8 nu) = {p['u_max_formula_Heff']:.4f}; g H^2/(8 nu) with H = 1 would be "
       f"{p['u_max_formula_H1']:.4f}). The example used g = 0.08, which gave 0.113; it now "
       "uses g = 8 nu u_max / H_eff^2.\n")
+
+    L += wp_sweeps.poiseuille(d, rev)
+    L += wp_sweeps.coupled(d, rev)
+    L += wp_sweeps.table1_tau(d, rev)
 
     # Splitting order.
     sp = d.get("splitting")
