@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Property: the half-pair path of the SDPD backend (sdpd_half_pairs.hpp; systems without
+// Property: the half-pair path of the SDPD backend (sdpd_half_path.cpp; systems without
 // walls, transported species or reactions) against the full-list gather, and its determinism
 // (thread count, restarts across neighbour-list rebuilds) and momentum conservation.
 #include <gtest/gtest.h>

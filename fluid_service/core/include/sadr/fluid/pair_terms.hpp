@@ -37,7 +37,7 @@ struct PairGeometry {
 ///      - \frac{5\eta}{3} \sum_j \frac{F_{ij}}{d_i d_j}\,[v_{ij} + e_{ij}(e_{ij}\cdot v_{ij})] \f$.
 struct SdpdMomentumTerm {
   double friction;  ///< c_D eta: (5/3) eta in 3D (LAMMPS), 8/5 eta in 2D, 3/2 eta in 1D
-                    ///< (sdpd_rates.cpp)
+                    ///< (SdpdBackend::make_pair_params)
   /// Adds the pair force on i [mass length/time^2] to `force`.
   /// @param pi_di2 P_i/d_i^2, @param pj_dj2 P_j/d_j^2, @param inv_didj 1/(d_i d_j), @param v v_ij.
   template <int D>
