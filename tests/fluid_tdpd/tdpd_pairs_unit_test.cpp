@@ -61,13 +61,13 @@ void expect_half_list_exact(const Box& box, double cutoff, std::size_t n) {
     for (const std::uint32_t j : ref.of(i)) want.insert({std::min(i, j), std::max(i, j)});
   }
   std::vector<std::uint32_t> slab(n, 0);
-  ASSERT_EQ(h.slab_start.size(), h.slab_count + 1);
-  ASSERT_EQ(h.slab_start.back(), n);
-  for (std::uint32_t s = 0; s < h.slab_count; ++s) {
-    for (std::uint32_t k = h.slab_start[s]; k < h.slab_start[s + 1]; ++k)
-      slab[h.slab_members[k]] = s;
+  ASSERT_EQ(h.slabs.start.size(), h.slabs.count + 1);
+  ASSERT_EQ(h.slabs.start.back(), n);
+  for (std::uint32_t s = 0; s < h.slabs.count; ++s) {
+    for (std::uint32_t k = h.slabs.start[s]; k < h.slabs.start[s + 1]; ++k)
+      slab[h.slabs.members[k]] = s;
   }
-  std::vector<std::uint32_t> members = h.slab_members;
+  std::vector<std::uint32_t> members = h.slabs.members;
   std::sort(members.begin(), members.end());
   for (std::uint32_t i = 0; i < n; ++i) ASSERT_EQ(members[i], i) << "slab members: a permutation";
   std::size_t entries = 0;
@@ -78,7 +78,7 @@ void expect_half_list_exact(const Box& box, double cutoff, std::size_t n) {
           << "pair " << i << "," << j << " listed twice";
       // j lies 0..2 slabs ahead of i (mod the count on a periodic slab axis)
       std::uint32_t ds = slab[j] - slab[i];
-      if (box.periodic[box.dimension - 1] && slab[j] < slab[i]) ds += h.slab_count;
+      if (box.periodic[box.dimension - 1] && slab[j] < slab[i]) ds += h.slabs.count;
       EXPECT_LE(ds, 2U) << "pair " << i << "," << j;
       if (ds == 0) {
         EXPECT_GT(j, i);

@@ -12,9 +12,10 @@
 namespace sadr::fluid::tdpd {
 namespace {
 
-constexpr int kReach = 2;  // cells of width >= cutoff / kReach
-// Layers (slabs) per colour: kReach + 1 colours, so a periodic layer count is a multiple of 3.
-constexpr int kColours = kReach + 1;
+// cells of width >= cutoff / kReach, the slab reach of the scheduler; kColours = kReach + 1
+// colours, so a periodic layer count is a multiple of 3
+constexpr int kReach = static_cast<int>(SlabScheduler::kReach);
+constexpr int kColours = static_cast<int>(SlabScheduler::kColours);
 
 }  // namespace
 
@@ -66,10 +67,12 @@ void build_half_list(const PeriodicBox& pbox, double cutoff, std::span<const dou
       for (int a = 0; a < 3; ++a) sx[3 * k + a] = x[3 * i + a];
     }
   }
-  out.slab_count = static_cast<std::uint32_t>(nc[sa]);
-  out.slab_start.resize(out.slab_count + 1);
-  for (std::uint32_t s = 0; s <= out.slab_count; ++s) out.slab_start[s] = cell_start[s * per_layer];
-  out.slab_members = sid;  // by layer, in cell order within a layer (locality of the pair loop)
+  SlabPartition& slabs = out.slabs;
+  slabs.count = static_cast<std::uint32_t>(nc[sa]);
+  slabs.wrap = box.periodic[sa];
+  slabs.start.resize(slabs.count + 1);
+  for (std::uint32_t s = 0; s <= slabs.count; ++s) slabs.start[s] = cell_start[s * per_layer];
+  slabs.members = sid;  // by layer, in cell order within a layer (locality of the pair loop)
 
   // Distinct neighbour cell coordinates on axis a: the forward layers 0..kReach on the slab
   // axis (first entry: the own layer), -kReach..kReach on the others.

@@ -3,15 +3,14 @@
 /// The tDPD pair loop over a half ("forward") neighbour list: every pair is evaluated ONCE and
 /// writes +F to i and -F to j (likewise the density kernel and the species fluxes).
 ///
-/// Determinism without atomics (the scheme of the SDPD half-pair path): the list
-/// (tdpd_cells.hpp) keeps j in the same slab (a layer of cells along the last axis) with j > i,
-/// or 1..2 slabs ahead, so a pair spans at most 3 consecutive slabs. Phase p runs the slabs
-/// s = p mod 3 in parallel; slab s writes only to slabs s..s+2, so no two threads write the same
-/// particle, and each particle receives its contributions in an order fixed by (phase, slab,
-/// member, list entry): independent of the thread count. The slabs and list order depend on
-/// the positions at the last list build, which the state blob stores, so
-/// restarts stay bit-exact. One number s_ij = F_ij / r_ij serves both particles, so the pair
-/// forces are exact negatives (total momentum conserved to rounding); the species fluxes are
+/// Determinism without atomics: the core SlabScheduler (slab_scheduler.hpp), shared with the SDPD
+/// half-pair path. The list (tdpd_cells.hpp) keeps j in the same slab (a layer of cells along the
+/// last axis) with j > i, or 1..2 slabs ahead, so a pair spans at most 3 consecutive slabs, and
+/// each particle receives its contributions in an order fixed by (phase, slab, member, list
+/// entry): independent of the thread count. The slabs and list order depend on the positions at
+/// the last list build, which the state blob stores, so restarts stay bit-exact. One number s_ij =
+/// F_ij / r_ij serves both particles, so the pair forces are exact negatives (total momentum
+/// conserved to rounding); the species fluxes are
 /// +-w (C_j - C_i) per pair (total amount conserved to rounding).
 ///
 /// Per particle i: (1) minimum image and r^2 of every forward entry, compacted branch-free to
@@ -34,30 +33,21 @@ namespace sadr::fluid {
 
 void TdpdBackend::rebuild_neighbors(const std::vector<double>& ref) const {
   tdpd::build_half_list(pbox_, builder_->cutoff(), ref, half_);
+  slabs_.set(std::move(half_.slabs), half_.list);
   list_ref_x_ = ref;
   ++list_builds_;
 }
 
 template <class PerParticle>
 void TdpdBackend::slab_phases(PerParticle&& per_particle) const {
-  [[maybe_unused]] const auto ni = static_cast<std::int64_t>(n_);
-  constexpr std::uint32_t colours = 3;  // a pair spans at most 3 consecutive slabs
-  // One parallel region for the colours (the implicit barrier of each `omp for` orders them).
-#pragma omp parallel if (ni >= kMinParallel)
-  {
-    tdpd::PairBlock block;
-    block.reserve(half_.max_len);
-    for (std::uint32_t phase = 0; phase < colours; ++phase) {
-      const auto tasks =
-          static_cast<std::int64_t>((half_.slab_count + colours - 1 - phase) / colours);
-#pragma omp for schedule(dynamic, 1)
-      for (std::int64_t t = 0; t < tasks; ++t) {
-        const auto s = static_cast<std::size_t>(phase + colours * t);
-        for (std::uint32_t k = half_.slab_start[s]; k < half_.slab_start[s + 1]; ++k)
-          per_particle(half_.slab_members[k], block);
-      }
-    }
-  }
+  std::vector<tdpd::PairBlock> blocks(static_cast<std::size_t>(max_threads()));
+  slabs_.run(
+      [&](const std::uint32_t* first, const std::uint32_t* last, std::size_t t) {
+        tdpd::PairBlock& block = blocks[t];
+        block.reserve(half_.max_len);
+        for (; first != last; ++first) per_particle(*first, block);
+      },
+      static_cast<std::int64_t>(n_) >= kMinParallel);
 }
 
 void TdpdBackend::evaluate(const std::vector<double>& x, const std::vector<double>& v,

@@ -30,6 +30,7 @@
 #include "sadr/fluid/kernel.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
 #include "sadr/fluid/periodic_box.hpp"
+#include "sadr/fluid/slab_scheduler.hpp"
 #include "sadr/fluid/species_transport.hpp"
 #include "sadr/fluid/stability.hpp"
 #include "sadr/fluid/tdpd_cells.hpp"
@@ -124,7 +125,7 @@ class TdpdBackend final : public BackendBase {
   void ensure_neighbors() const;
   /// Builds the half list and its slabs at positions `ref` (tdpd_cells.hpp).
   void rebuild_neighbors(const std::vector<double>& ref) const;
-  /// Runs per_particle(i, PairBlock&) over all particles in the slab-colour order.
+  /// Runs per_particle(i, PairBlock&) over all particles in the order of the slab scheduler.
   template <class PerParticle>
   void slab_phases(PerParticle&& per_particle) const;
   void check_health(std::uint64_t step_index, std::uint32_t substep) const;
@@ -138,6 +139,7 @@ class TdpdBackend final : public BackendBase {
   std::unique_ptr<CellListBuilder> builder_;  ///< checks the box against the list cutoff
   /// Forward half list and slabs (tdpd_cells.hpp), rebuilt when a particle moved > skin/2.
   mutable tdpd::HalfList half_;
+  mutable SlabScheduler slabs_;             ///< the slabs of half_ (core slab_scheduler.hpp)
   mutable std::vector<double> list_ref_x_;  ///< positions at the last list build (saved)
   mutable std::uint64_t list_builds_ = 0;
   double skin_half2_ = 0;
