@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "commands.hpp"
+#include "graph_report.hpp"
 
 #include <unistd.h>
 
@@ -54,12 +55,15 @@ bool is_service_failure(const Error& e) {
 }  // namespace
 
 void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
+  const GraphReport graph = graph_report(scene, plan);  // SSA graph diagnostics (#18)
+  if (!graph.warning.empty()) log::warn(scene.name, ": ", graph.warning);
   if (o.quiet) return;
   std::fprintf(stderr, "sadr: scene '%s' (%zu particles, %zu species, %zu reactions), t_end = %g\n",
                scene.name.c_str(), scene.particles.size(), scene.species.size(),
                scene.reactions.size(), scene.time.end);
   std::fprintf(stderr, "sadr: plan (services as %s):\n", std::string(to_string(o.mode)).c_str());
   for (const auto& line : plan.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
+  for (const auto& line : graph.lines) std::fprintf(stderr, "  - %s\n", line.c_str());
 }
 
 namespace {

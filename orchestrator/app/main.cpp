@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include "commands.hpp"
+#include "graph_report.hpp"
 
 #include "sadr/common/build_info.hpp"
 #include "sadr/common/log.hpp"
@@ -199,6 +200,17 @@ int main(int argc, char** argv) {
   bool markdown = false;
   backends->add_flag("--markdown", markdown, "as the Markdown tables of docs/scene-format.md");
 
+  auto* graph = app.add_subcommand(
+      "graph",
+      "dump the SSA diffusion graph of a scene (edges, D_ij, jump rates) and its "
+      "diagnostics (docs/cli.md)");
+  std::string graph_format = "json";
+  graph->add_option("scene", o.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
+  graph->add_option("--format", graph_format, "json (default) or csv")
+      ->check(CLI::IsMember({"json", "csv"}));
+  graph->add_option("-o,--output", o.output, "write to FILE instead of stdout");
+  add_set_option(graph);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -220,6 +232,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*backends) return cmd_backends(markdown);
+    if (*graph) return cmd_graph(o, graph_format);
     if (*validate) return cmd_validate(o);
     if (*run) return cmd_run(o);
     if (*ensemble) return cmd_ensemble(o);
