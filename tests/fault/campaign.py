@@ -32,7 +32,8 @@ byte-identically and leaked nothing.
 """
 import argparse, filecmp, glob, os, random, shutil, signal, subprocess, sys, tempfile, time
 
-TMP = tempfile.gettempdir()
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sadr_procs import children, comm, running, traces  # noqa: E402
 
 # Small but moving (sdpd), both services, checkpoints at every frame.
 SCENE = """name: campaign
@@ -57,39 +58,6 @@ seed: 18
 """
 
 SERVICES = ("fluid_service", "ssa_service")
-
-
-def children(pid):
-    out = []
-    for tid in glob.glob(f"/proc/{pid}/task/*"):
-        try:
-            with open(tid + "/children") as f:
-                out += [int(c) for c in f.read().split()]
-        except OSError:
-            pass
-    return out
-
-
-def comm(pid):
-    try:
-        with open(f"/proc/{pid}/comm") as f:
-            return f.read().strip()
-    except OSError:
-        return ""
-
-
-def running(pid):
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except OSError:
-        return False
-
-
-def traces(pid):
-    return (glob.glob(f"/dev/shm/sadr-geometry-{pid}-*") +
-            glob.glob(os.path.join(TMP, f"sadr-run-{pid}-*")) +
-            glob.glob(os.path.join(TMP, f"sadr-{pid}-*")))
 
 
 def output_files(d):

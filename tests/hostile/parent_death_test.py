@@ -13,7 +13,8 @@ so that a loaded machine cannot fail it).
 """
 import glob, os, random, signal, subprocess, sys, tempfile, time
 
-TMP = tempfile.gettempdir()
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "fault"))
+from sadr_procs import children, running, traces  # noqa: E402
 
 SCENE = """name: long_request
 dimension: 2
@@ -34,27 +35,6 @@ species:
   - {name: A, diffusivity: 0.01, initial: [{count: 1}]}
 time: {coupling_step: 0.5, end: 1.0}
 """
-
-def children(pid):
-    out = []
-    for tid in glob.glob(f"/proc/{pid}/task/*"):
-        try:
-            with open(tid + "/children") as f:
-                out += [int(c) for c in f.read().split()]
-        except OSError:
-            pass
-    return out
-
-def running(pid):
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except OSError:
-        return False
-
-def traces(pid):
-    return (glob.glob(f"/dev/shm/sadr-geometry-{pid}-*") + glob.glob(os.path.join(TMP, f"sadr-run-{pid}-*")) +
-            glob.glob(os.path.join(TMP, f"sadr-{pid}-*")))
 
 def wait_gone(pids, limit):
     t0 = time.monotonic()
