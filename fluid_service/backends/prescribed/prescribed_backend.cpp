@@ -13,7 +13,10 @@ PrescribedField PrescribedField::from_parameters(const std::map<std::string, dou
                                                  bool& rk4) {
   PrescribedField f;
   rk4 = false;
-  for (const auto& [key, v] : p) {
+  for (const auto& entry : p) {
+    // Not a structured binding: clang 14 (preset fuzz) cannot capture one in the lambda below.
+    const std::string& key = entry.first;
+    const double v = entry.second;
     if (!std::isfinite(v)) {
       throw InvalidArgument("prescribed." + key + " = " + format_value(v) + " (must be finite)");
     }
