@@ -95,6 +95,17 @@ const std::vector<MalformedCase>& cases() {
        "  backend: tdpd\n  parameters: {lambda: 1.5}\n",
        {"scene.yaml:14:24: fluid.parameters.lambda: 1.5 is out of range; allowed: [0, 1] "
         "[dimensionless] (Groot-Warren velocity-prediction factor)"}},
+      // A schema choice is a name (prescribed.field), not its index.
+      {"parameter_name_not_a_choice",
+       "  backend: static\n",
+       "  backend: prescribed\n  parameters: {field: rotaton}\n",
+       {"scene.yaml:14:23: fluid.parameters.field: unknown name 'rotaton'; did you mean "
+        "'rotation'? (allowed: uniform, shear, poiseuille, rotation)"}},
+      {"parameter_choice_given_as_a_number",
+       "  backend: static\n",
+       "  backend: prescribed\n  parameters: {field: 3}\n",
+       {"fluid.parameters.field: unknown name '3'",
+        "(allowed: uniform, shear, poiseuille, rotation)"}},
       {"species_name_reused",
        "  - name: B\n",
        "  - name: A\n",

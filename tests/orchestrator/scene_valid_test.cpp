@@ -74,6 +74,17 @@ TEST(SceneValid, KernelFromTheBackendsSchema) {
   EXPECT_EQ(parse_scene(text, "scene.yaml").fluid.kernel, "wendland_c2");
 }
 
+// A schema choice is written as its name and sent as its index (prescribed: field, integrator).
+TEST(SceneValid, ParameterNamesBecomeTheirIndex) {
+  const std::string text = test::replace_once(
+      test::kBaseScene, "  backend: static\n",
+      "  backend: prescribed\n  parameters: {field: rotation, integrator: rk4, omega: 2}\n");
+  const auto p = parse_scene(text, "scene.yaml").fluid.parameters;
+  EXPECT_EQ(p.at("field"), 3.0);
+  EXPECT_EQ(p.at("integrator"), 1.0);
+  EXPECT_EQ(p.at("omega"), 2.0);
+}
+
 TEST(SceneValid, OutputTimesDefaultToStartAndEnd) {
   const Scene s = parse_scene(kBaseScene, "scene.yaml");
   EXPECT_EQ(s.output.times, (std::vector<double>{0.0, 1.0}));

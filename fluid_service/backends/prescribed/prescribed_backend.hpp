@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 /// \file prescribed_backend.hpp
 /// "prescribed": particles carried by a velocity field given in the scene (no fluid solve), for
-/// a user with a known flow. Fields (fluid.parameters, `field`): 0 uniform u = (ux, uy, uz);
-/// 1 simple shear u_x = shear_rate (y - y0); 2 Poiseuille u_x = 4 u_max (y - a)(b - y)/(b - a)^2
-/// between the planes y = a, b (wall_lo, wall_hi; 0 outside); 3 solid-body rotation about
-/// (cx, cy) in the x-y plane, u = omega (-(y - cy), x - cx). Integrated exactly (the flow map of
-/// each field in closed form; `integrator` 0) or with classical RK4 (`integrator` 1) in
+/// a user with a known flow. Fields (fluid.parameters, `field`; the scene writes the name, the
+/// backend gets its index): 0 uniform u = (ux, uy, uz); 1 shear u_x = shear_rate (y - y0);
+/// 2 poiseuille u_x = 4 u_max (y - a)(b - y)/(b - a)^2 between the planes y = a, b (wall_lo,
+/// wall_hi; 0 outside); 3 rotation (solid body) about (cx, cy) in the x-y plane,
+/// u = omega (-(y - cy), x - cx). Integrated exactly (the flow map of each field in closed form;
+/// `integrator` 0, "exact") or with classical RK4 (`integrator` 1, "rk4") in
 /// sub-steps no longer than max_time_step. Wall particles never move. Deterministic species
 /// follow the SDPD species operator (species_operator.hpp, as static) at the positions after
 /// each advance (Lie splitting of the Lagrangian transport: first order in the coupling step).

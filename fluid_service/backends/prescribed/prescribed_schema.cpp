@@ -15,11 +15,25 @@ Backend prescribed_backend() {
       "or with RK4; docs/fluid-core.md";
   b.capabilities = {true, true, false, false, {"stationary"}, {"lucy", "wendland_c2"}};
   b.parameters = {
-      {"field", "-", 0, 0, 3, true, false,
-       "0 uniform (ux, uy, uz), 1 shear u_x = shear_rate (y - y0), 2 Poiseuille between "
-       "y = wall_lo, wall_hi, 3 solid-body rotation omega about (cx, cy)"},
-      {"integrator", "-", 0, 0, 1, true, false,
-       "0 the exact flow map, 1 classical RK4 in sub-steps <= max_time_step"},
+      {"field",
+       "-",
+       0,
+       0,
+       3,
+       true,
+       false,
+       "uniform (ux, uy, uz); shear u_x = shear_rate (y - y0); poiseuille between y = wall_lo, "
+       "wall_hi; rotation: solid body, omega about (cx, cy)",
+       {"uniform", "shear", "poiseuille", "rotation"}},
+      {"integrator",
+       "-",
+       0,
+       0,
+       1,
+       true,
+       false,
+       "exact: the flow map; rk4: classical RK4 in sub-steps <= max_time_step",
+       {"exact", "rk4"}},
       {"ux", "length/time", 0, -inf, inf, false, false, "uniform velocity, x"},
       {"uy", "length/time", 0, -inf, inf, false, false, "uniform velocity, y"},
       {"uz", "length/time", 0, -inf, inf, false, false, "uniform velocity, z"},

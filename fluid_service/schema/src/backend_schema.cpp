@@ -13,7 +13,9 @@ std::string num(double v) {
   std::snprintf(b, sizeof b, "%.10g", v);
   return b;
 }
+std::string join(const std::vector<std::string>& v);
 std::string range(const Parameter& p) {
+  if (!p.choices.empty()) return "one of " + join(p.choices);
   const bool lo = std::isfinite(p.min), hi = std::isfinite(p.max);
   std::string r = p.whole ? "a whole number, " : "";
   if (lo && hi) {
@@ -43,6 +45,19 @@ bool Parameter::allows(double v, std::string& why) const {
   const bool ok = std::isfinite(v) && inside && (!whole || v == std::floor(v));
   if (!ok) why = range(*this);
   return ok;
+}
+
+int Parameter::choice_index(std::string_view n) const {
+  for (std::size_t k = 0; k < choices.size(); ++k) {
+    if (choices[k] == n) return static_cast<int>(k);
+  }
+  return -1;
+}
+
+/// The default as the scene writes it (a name for a choice).
+static std::string default_text(const Parameter& p) {
+  const auto k = static_cast<std::size_t>(p.default_value);
+  return p.choices.empty() || k >= p.choices.size() ? num(p.default_value) : p.choices[k];
 }
 
 const Parameter* Backend::parameter(std::string_view n) const {
@@ -82,8 +97,8 @@ std::string names() {
 std::string markdown_parameters(const Backend& b) {
   std::string s = "| parameter | unit | default | allowed | meaning |\n|---|---|---|---|---|\n";
   for (const auto& p : b.parameters) {
-    s += "| `" + p.name + "` | " + p.unit + " | " + num(p.default_value) + " | " + range(p) +
-         " | " + p.doc + " |\n";
+    s += "| `" + p.name + "` | " + p.unit + " | " + default_text(p) + " | " + range(p) + " | " +
+         p.doc + " |\n";
   }
   if (b.parameters.empty()) s += "| (none) | | | | |\n";
   return s;
@@ -115,7 +130,7 @@ std::string describe() {
          "; requires: " + join(b.required) + "\n";
     s += "  parameters (fluid.parameters):" + std::string(b.parameters.empty() ? " none\n" : "\n");
     for (const auto& p : b.parameters) {
-      s += "    " + p.name + " [" + p.unit + "] default " + num(p.default_value) + ", " + range(p) +
+      s += "    " + p.name + " [" + p.unit + "] default " + default_text(p) + ", " + range(p) +
            ": " + p.doc + "\n";
     }
   }

@@ -108,6 +108,12 @@ void read_parameters(SceneContext& ctx, const Field& f, const schema::Backend* b
                   (known.empty() ? std::string("none") : known) + " (sadr backends)");
       continue;
     }
+    if (spec && !spec->choices.empty()) {  // a name; the wire carries its index
+      std::vector<std::string_view> names(spec->choices.begin(), spec->choices.end());
+      const auto name = r.choice(params, key, names, true, "name");
+      if (name) ctx.scene.fluid.parameters[key] = spec->choice_index(*name);
+      continue;
+    }
     const auto v = r.number(params, key, Bound::kAny, spec ? spec->unit : "", true);
     std::string why;
     if (v && spec && !spec->allows(*v, why)) {

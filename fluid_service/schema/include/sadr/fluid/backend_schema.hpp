@@ -14,7 +14,8 @@
 
 namespace sadr::fluid::schema {
 
-/// One number in `fluid.parameters`.
+/// One entry of `fluid.parameters`: a number, or a name among `choices` (the scene writes the
+/// name; the loader sends its index, so the wire and the backend see the number k).
 struct Parameter {
   std::string name;
   std::string unit;  ///< "dimensionless", "length", ... (docs/scene-format.md, units)
@@ -24,8 +25,12 @@ struct Parameter {
   bool whole = false;          ///< a whole number (flags, axes)
   bool open_interval = false;  ///< (min, max) instead of [min, max]
   std::string doc;             ///< one line
+  /// Non-empty: the names of the values 0, 1, ... (then whole, min = 0, max = size - 1).
+  std::vector<std::string> choices{};
   /// Whether v is allowed; else `why` says the range ("[0, 1]", "a whole number in [-1, 2]").
   [[nodiscard]] bool allows(double v, std::string& why) const;
+  /// The index of the name `n` among choices, or -1.
+  [[nodiscard]] int choice_index(std::string_view n) const;
 };
 
 struct Capabilities {
