@@ -16,6 +16,7 @@ Backend sdpd_backend() {
       "reaction-diffusion; docs/fluid-core.md";
   b.capabilities = {true, true, true, true, {"stationary", "morris"}, {"lucy", "wendland_c2"}};
   b.required = {"sound_speed", "shear_viscosity"};
+  b.memory = {{710, 830, 900}, 490};  // measured 704, 821, 863-901 B; sadr 333-489 B
   b.parameters = {
       {"density_diffusion", "dimensionless", 0.1, 0.0, inf, false, false,
        "Molteni-Colagrossi density diffusion delta (continuity density)"},

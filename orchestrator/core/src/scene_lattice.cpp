@@ -60,10 +60,10 @@ std::vector<double> axis_points(SceneContext& ctx, const Field& where, int axis,
 /// species) need more memory than the machine has is refused before it is built.
 std::optional<std::string> lattice_memory_refusal(const SceneContext& ctx, double points) {
   const int d = ctx.scene.box.dimension;
-  const double need =
-      orchestrator_memory(ctx.scene.fluid.backend).at(points) +
-      (ctx.scene.fluid.backend == "static" ? 0.0
-                                           : fluid_memory(ctx.scene.fluid.backend, d).at(points));
+  const double need = orchestrator_memory(ctx.scene.fluid.backend).at(points) +
+                      (moves_particles(ctx.scene.fluid.backend)
+                           ? fluid_memory(ctx.scene.fluid.backend, d).at(points)
+                           : 0.0);
   const MachineLimits m = machine_limits(".");
   if (need <= m.memory_bytes) return std::nullopt;
   return format_number(points) + " lattice points need at least " + format_number(need / 1e9) +

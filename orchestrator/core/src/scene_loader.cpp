@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "sadr/common/status.hpp"
+#include "sadr/fluid/backend_schema.hpp"
 #include "sadr/orchestrator/hash.hpp"
 #include "scene_override_tree.hpp"
 #include "scene_parts.hpp"
@@ -155,7 +156,8 @@ void check_neighbours(SceneContext& ctx, const Field& root) {
   if (!ctx.particles_ok || !(s.lattice_spacing > 0) || !(s.fluid.smoothing_length > 0)) return;
   const bool diffuses = std::any_of(s.species.begin(), s.species.end(),
                                     [](const Species& sp) { return sp.diffusivity > 0; });
-  if (s.fluid.backend == "static" && !diffuses) return;
+  const auto* backend = sadr::fluid::schema::find(s.fluid.backend);
+  if (backend && !backend->capabilities.moves_particles && !diffuses) return;
   const double ratio = s.fluid.smoothing_length / s.lattice_spacing;
   if (lattice_neighbours(s.box.dimension, ratio * (1.0 - 1e-9)) > 0) return;
   const Field fluid = YamlReader::child(root, "fluid");

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "sadr/common/status.hpp"
+#include "sadr/fluid/backend_schema.hpp"
 #include "sadr/orchestrator/diagnostics.hpp"
 
 namespace sadr::orchestrator {
@@ -19,6 +20,13 @@ namespace sadr::orchestrator {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The backend's schema memory figures (sdpd's defaults for an unknown name: the loader has
+/// refused it already).
+sadr::fluid::schema::MemoryPerParticle backend_memory(const std::string& backend) {
+  const auto* b = sadr::fluid::schema::find(backend);
+  return b ? b->memory : sadr::fluid::schema::MemoryPerParticle{};
+}
 
 std::string bytes_text(double b) {
   const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
@@ -47,7 +55,7 @@ std::pair<double, std::string> fluid_substep(const Scene& s) {
   auto consider = [&](double dt, const char* name) {
     if (dt > 0 && dt < best.first) best = {dt, name};
   };
-  if (f.backend != "static") {
+  if (moves_particles(f.backend)) {
     double vmax = 0;
     const auto& v = s.particles.velocities;
     for (std::size_t i = 0; i + 2 < v.size(); i += 3) {
@@ -129,13 +137,12 @@ double ssa_event_rate(const Scene& s, double& molecules) {
 
 }  // namespace
 
-// Measured by bench/memory_per_particle.py (peak RSS at 1e5 and 4e5
-// particles, the slope rounded up; docs/cli.md has the table). The base
+// Bytes per particle: the backend's schema entry (measured by bench/memory_per_particle.py, peak
+// RSS at 1e5 and 4e5 particles, the slope rounded up; docs/cli.md has the table). The base
 // (libraries, thread stacks) was 9-16 MiB per process.
 MemoryModel fluid_memory(const std::string& backend, int dimension) {
-  if (backend == "static") return {16e6, dimension == 3 ? 1330.0 : 1250.0};
-  if (backend == "tdpd") return {16e6, dimension == 3 ? 820.0 : 710.0};
-  return {16e6, dimension == 3 ? 900.0 : dimension == 2 ? 830.0 : 710.0};
+  const auto d = static_cast<std::size_t>(std::clamp(dimension, 1, 3) - 1);
+  return {16e6, backend_memory(backend).fluid_service[d]};
 }
 
 MemoryModel ssa_memory(int dimension) {
@@ -143,7 +150,12 @@ MemoryModel ssa_memory(int dimension) {
 }
 
 MemoryModel orchestrator_memory(const std::string& backend) {
-  return {16e6, backend == "tdpd" ? 570.0 : 490.0};
+  return {16e6, backend_memory(backend).sadr};
+}
+
+bool moves_particles(const std::string& backend) {
+  const auto* b = sadr::fluid::schema::find(backend);
+  return b == nullptr || b->capabilities.moves_particles;
 }
 
 MachineLimits machine_limits(const std::filesystem::path& output) {

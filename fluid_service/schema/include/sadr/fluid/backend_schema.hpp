@@ -8,6 +8,7 @@
 /// (`backends/<name>/<name>_schema.cpp`); the list is `src/backend_schema.cpp`.
 #pragma once
 
+#include <array>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,6 +43,13 @@ struct Capabilities {
   std::vector<std::string> kernels;      ///< fluid.kernel values (first: the default)
 };
 
+/// Peak resident memory per particle with this backend (bench/memory_per_particle.py: the slope
+/// between 1e5 and 4e5 particles, rounded up; docs/cli.md), for the run plan's memory estimate.
+struct MemoryPerParticle {
+  std::array<double, 3> fluid_service{710, 830, 900};  ///< [bytes] in 1D, 2D, 3D
+  double sadr = 490;                                   ///< [bytes] the orchestrator's share
+};
+
 struct Backend {
   std::string name;
   std::string summary;  ///< one line
@@ -49,6 +57,7 @@ struct Backend {
   /// Scene keys of `fluid:` this backend needs (e.g. sound_speed).
   std::vector<std::string> required;
   std::vector<Parameter> parameters;
+  MemoryPerParticle memory{};
   [[nodiscard]] const Parameter* parameter(std::string_view n) const;
   /// Whether `key` is in `required`.
   [[nodiscard]] bool needs(std::string_view key) const;

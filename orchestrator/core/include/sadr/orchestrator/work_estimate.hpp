@@ -41,6 +41,8 @@ struct MemoryModel {
 MemoryModel fluid_memory(const std::string& backend, int dimension);
 MemoryModel ssa_memory(int dimension);
 MemoryModel orchestrator_memory(const std::string& backend);
+/// Whether the fluid backend moves particles (its schema capability; true for an unknown name).
+bool moves_particles(const std::string& backend);
 
 struct WorkEstimate {
   double particles = 0;
