@@ -3,7 +3,7 @@
 /// "static": the particles never move; densities, masses and positions stay those of the
 /// initial state. Costs nothing per step when there are no deterministic species. When
 /// there are, it integrates them on the frozen particles with exactly the SDPD species
-/// operator (SPEC eq 17 + mass-action reactions, trapezoidal predictor-corrector, the
+/// operator (docs/method.md eq (17) + mass-action reactions, trapezoidal predictor-corrector, the
 /// same wall conditions), so frozen-particle diffusion references (refs cases 1-4) can be
 /// run without a flow.
 #pragma once

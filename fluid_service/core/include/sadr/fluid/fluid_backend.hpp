@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file fluid_backend.hpp
-/// The seam between the fluid service and its numerical models (STYLE 3.2).
+/// The seam between the fluid service and its numerical models (docs/fluid-core.md).
 #pragma once
 
 #include <algorithm>

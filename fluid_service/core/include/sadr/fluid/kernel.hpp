@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file kernel.hpp
-/// Smoothing kernels with compact support radius h (SPEC section 2).
+/// Smoothing kernels with compact support radius h (docs/method.md section 2).
 ///
 /// Notation: q = r / h with h the SUPPORT radius (W = 0 for r >= h), and
 /// F(r) = -(1/r) dW/dr >= 0, finite at r = 0 for both kernels here.

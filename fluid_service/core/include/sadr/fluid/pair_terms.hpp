@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 /// \file pair_terms.hpp
-/// SDPD pair physics as small evaluators (STYLE 3.2), each with its equation.
+/// SDPD pair physics as small evaluators (one term, one struct), each with its equation.
 /// All are evaluated from the side of particle i in a gather loop over a full
 /// neighbour list; every term is exactly antisymmetric (forces) or symmetric
 /// (coefficients) under i <-> j, so momentum and species mass are conserved to round-off.
 ///
-/// Notation (SPEC section 2): x_ij = x_i - x_j, r = |x_ij|, e_ij = x_ij / r,
+/// Notation (docs/method.md section 2): x_ij = x_i - x_j, r = |x_ij|, e_ij = x_ij / r,
 /// v_ij = v_i - v_j, F_ij = -(1/r) dW/dr >= 0, number density d_i = rho_i / m_i.
 #pragma once
 
@@ -32,7 +32,7 @@ struct PairGeometry {
 };
 
 /// Espanol & Revenga (2003) isothermal SDPD momentum, in the LAMMPS
-/// `sdpd/taitwater/isothermal` form (SPEC section 2):
+/// `sdpd/taitwater/isothermal` form (docs/method.md (16)):
 /// \f$ m_i \dot v_i = \sum_j (P_i/d_i^2 + P_j/d_j^2) F_{ij} x_{ij}
 ///      - \frac{5\eta}{3} \sum_j \frac{F_{ij}}{d_i d_j}\,[v_{ij} + e_{ij}(e_{ij}\cdot v_{ij})] \f$.
 struct SdpdMomentumTerm {
@@ -81,7 +81,7 @@ struct ContinuityTerm {
   }
 };
 
-/// Brookshaw / Cleary-Monaghan Laplacian coefficient of SPEC eq 17:
+/// Brookshaw / Cleary-Monaghan Laplacian coefficient of docs/method.md (17):
 /// \f$ \dot C_i = \sum_j K_{ij} (\kappa_i + \kappa_j)(C_j - C_i),\;
 ///     K_{ij} = \frac{m_j}{\rho_j} F_{ij} \frac{r^2}{r^2 + \epsilon h^2} \f$  [1/length^2].
 struct DiffusionTerm {

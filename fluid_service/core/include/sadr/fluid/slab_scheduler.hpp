@@ -2,7 +2,7 @@
 /// \file slab_scheduler.hpp
 /// The slab scheduler of the half-pair loops (SDPD's bulk path and tDPD): every pair is
 /// evaluated once and written to both particles, in parallel, without atomics and with results
-/// independent of the thread count (docs/method.md, "Deterministic parallel pair loops").
+/// independent of the thread count (docs/fluid-core.md section 3).
 ///
 /// Particles are binned into slabs along one axis, each at least (list cutoff) / kReach wide,
 /// so a listed pair spans at most kReach + 1 consecutive slabs. The list is a "forward" list:

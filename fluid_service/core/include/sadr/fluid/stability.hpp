@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file stability.hpp
-/// Explicit time-step limits (SPEC section 5; Morris, Fox & Zhu 1997; Monaghan 1992).
+/// Explicit time-step limits (docs/method.md section 5; Morris, Fox & Zhu 1997; Monaghan 1992).
 /// The coefficients are Morris' for his smoothing length h_M; our h is the kernel SUPPORT
 /// radius, and Morris' kernels have support 2 h_M, so h_M = h/2 below. Coefficients:
 ///  - acoustic   dt <= 0.25 h_M / (c0 + v_max)

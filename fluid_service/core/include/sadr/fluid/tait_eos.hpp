@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file tait_eos.hpp
-/// Tait equation of state (SPEC section 2; Monaghan 1994, Morris 1997):
+/// Tait equation of state (docs/method.md section 2; Monaghan 1994, Morris 1997):
 /// \f$ P = \frac{\rho_0 c_0^2}{\gamma}\left[(\rho/\rho_0)^\gamma - 1\right] \f$, gamma = 7.
 #pragma once
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file tdpd_backend.hpp
 /// Transport dissipative particle dynamics (tDPD, Li et al. 2015, J Chem Phys 143, 014101;
-/// SPEC section 3) behind the FluidBackend seam, registered under the name "tdpd".
+/// docs/method.md section 3) behind the FluidBackend seam, registered under the name "tdpd".
 ///
 /// Model (unit particle mass, DPD units):
 ///  - pair force F_ij = [a w_C - gamma w_D (e_ij . v_ij) + sigma w_R xi_ij / sqrt(dt)] e_ij,
