@@ -72,14 +72,15 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
   const std::size_t n = mass_.size();
   const int dim = model_.box.dimension;
   evaluate(y_, key, r0_, true);
-  const auto [dt, lim_dt, lim_name] =
-      next_substep(limits(y_, r0_), model_.max_time_step, model_.force_time_step, remaining,
-                   rep.stable_dt, rep.limiting_criterion);
+  // (not a structured binding: clang 14 cannot use one in the OpenMP regions below)
+  const Substep next = next_substep(limits(y_, r0_), model_.max_time_step, model_.force_time_step,
+                                    remaining, rep.stable_dt, rep.limiting_criterion);
+  const double dt = next.dt;
   if (sub >= kMaxSubsteps) {
     throw NumericalFailure("sdpd: more than 65535 sub-steps needed in one advance (limit '" +
-                               lim_name + "' = " + format_value(lim_dt) +
+                               next.limit_name + "' = " + format_value(next.limit) +
                                "); use a smaller coupling time_step",
-                           {{"step", std::to_string(step_index)}, {"limit", lim_name}});
+                           {{"step", std::to_string(step_index)}, {"limit", next.limit_name}});
   }
   const double sdt = std::sqrt(dt);
   const bool noise_on = !r0_.acc_noise.empty();

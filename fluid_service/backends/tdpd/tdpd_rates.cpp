@@ -150,7 +150,7 @@ void TdpdBackend::evaluate_dim(const std::vector<double>& x, const std::vector<d
       bj[m] = j;
       for (int k = 0; k < D; ++k) bd[k][m] = d[k];
       br2[m] = r2;
-      m += (r2 < cut2) & (r2 > 0.0) ? 1 : 0;
+      m += ((r2 < cut2) & (r2 > 0.0)) ? 1 : 0;
     }
     if (m == 0) return;
     // (2) velocity differences of the accepted pairs

@@ -88,7 +88,9 @@ class SlabScheduler {
   template <class PerSlab>
   void run(PerSlab&& per_slab, [[maybe_unused]] bool parallel) {
     next_pass();
+#ifdef SADR_HAVE_OPENMP  // (a header: no unknown-pragma warning where OpenMP is off)
 #pragma omp parallel if (parallel)
+#endif
     run_team(per_slab);
   }
   /// Heap bytes held (benchmark diagnostics).
