@@ -25,6 +25,14 @@ enum ExitCode : int {
   kExitInterrupted = 130,
 };
 
+/// CURVE for --fluid/--ssa (keys_command.cpp; docs/cli.md, "Security").
+struct RemoteKeys {
+  std::string key;               ///< --key: this side's key pair (sadr keygen)
+  std::string server_key;        ///< --server-key: the services' public key (text or file)
+  std::string fluid_server_key;  ///< --fluid-server-key: fluid_service's, if it differs
+  std::string ssa_server_key;    ///< --ssa-server-key: ssa_service's, if it differs
+};
+
 struct CliOptions {
   std::string scene;       ///< scene file (run, validate)
   std::string checkpoint;  ///< checkpoint.json or its directory (resume)
@@ -32,6 +40,7 @@ struct CliOptions {
   bool force = false;      ///< overwrite a non-empty output directory
   ServiceMode mode = ServiceMode::kProcesses;
   ServiceEndpoints remote;  ///< --fluid / --ssa
+  RemoteKeys remote_keys;   ///< --key / --server-key (CURVE to remote services)
   /// Geometry fluid -> ssa through shared memory when the services run here
   /// (off: --no-shared-memory).
   bool shared_geometry = true;
@@ -62,6 +71,12 @@ struct CliOptions {
 };
 
 int cmd_validate(const CliOptions& options);
+/// `sadr keygen FILE` writes a CURVE key pair (FILE, 0600) and FILE.pub;
+/// `--show` prints the public key of FILE (keys_command.cpp).
+int cmd_keygen(const std::string& file, bool show);
+/// Registers the CURVE credentials of --key/--server-key for the remote
+/// endpoints; refuses keys without remote services and one without the other.
+void use_remote_keys(const CliOptions& options);
 /// `sadr backends [--markdown]` (backends_command.cpp).
 int cmd_backends(bool markdown);
 int cmd_run(const CliOptions& options);

@@ -66,6 +66,15 @@ int main(int argc, char** argv) {
                     "endpoint of a running fluid_service (e.g. tcp://host:5555); with --ssa, "
                     "nothing is launched");
     cmd->add_option("--ssa", o.remote.ssa, "endpoint of a running ssa_service");
+    cmd->add_option("--key", o.remote_keys.key,
+                    "CURVE key pair of this sadr (sadr keygen FILE) for --fluid/--ssa tcp "
+                    "endpoints: encrypted, and only services holding the --server-key answer");
+    cmd->add_option("--server-key", o.remote_keys.server_key,
+                    "public key of the services (40 characters, or their FILE.pub)");
+    cmd->add_option("--fluid-server-key", o.remote_keys.fluid_server_key,
+                    "fluid_service's public key, when it differs from --server-key");
+    cmd->add_option("--ssa-server-key", o.remote_keys.ssa_server_key,
+                    "ssa_service's public key, when it differs from --server-key");
     cmd->add_flag("!--no-shared-memory", o.shared_geometry,
                   "send the per-step particle geometry inline in the messages instead of "
                   "through a shared-memory segment (the default for services launched here)");
@@ -195,6 +204,16 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingDirectory);
 
+  auto* keygen = app.add_subcommand(
+      "keygen",
+      "write a CURVE key pair for tcp between sadr and services started by hand: FILE "
+      "(mode 0600) and FILE.pub (docs/cli.md, \"Security\")");
+  std::string key_file;
+  bool show_key = false;
+  keygen->add_option("file", key_file, "the key pair file to create (never overwritten)")
+      ->required();
+  keygen->add_flag("--show", show_key, "print the public key of an existing FILE instead");
+
   auto* backends = app.add_subcommand(
       "backends", "list the fluid backends, their capabilities and parameters (fluid.parameters)");
   bool markdown = false;
@@ -233,6 +252,8 @@ int main(int argc, char** argv) {
   try {
     if (*backends) return cmd_backends(markdown);
     if (*graph) return cmd_graph(o, graph_format);
+    if (*keygen) return cmd_keygen(key_file, show_key);
+    if (*run || *resume) use_remote_keys(o);
     if (*validate) return cmd_validate(o);
     if (*run) return cmd_run(o);
     if (*ensemble) return cmd_ensemble(o);

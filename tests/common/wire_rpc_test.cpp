@@ -76,7 +76,9 @@ TEST_P(RpcFixture, WrongVersionIsRefusedSayingExpectedAndReceived) {
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), StatusCode::kProtocolMismatch);
     const std::string m = e.what();
-    EXPECT_NE(m.find("speaks sadr wire protocol v1"), std::string::npos) << m;
+    EXPECT_NE(m.find("speaks sadr wire protocol v" + std::to_string(kProtocolVersion)),
+              std::string::npos)
+        << m;
     EXPECT_NE(m.find("asked for v99"), std::string::npos) << m;
   }
   // Still refused for a normal request: the handshake never completed.
@@ -93,7 +95,7 @@ TEST_P(RpcFixture, WrongVersionIsRefusedSayingExpectedAndReceived) {
 TEST_P(RpcFixture, WrongHeaderVersionAndMalformedFramesAreRefused) {
   RpcClient c(endpoint_, "ssa_service", std::chrono::seconds(5));
   common::v1::FrameHeader h;
-  h.set_protocol_version(2);
+  h.set_protocol_version(kProtocolVersion + 1);
   h.set_message_type("sadr.common.v1.HandshakeRequest");
   std::string hb, rh, rb;
   h.SerializeToString(&hb);
@@ -104,7 +106,8 @@ TEST_P(RpcFixture, WrongHeaderVersionAndMalformedFramesAreRefused) {
   common::v1::Status st;
   ASSERT_TRUE(st.ParseFromString(rb));
   EXPECT_EQ(st.code(), common::v1::STATUS_CODE_PROTOCOL_MISMATCH);
-  EXPECT_NE(st.message().find("speaks sadr wire protocol v1, the request declared v2"),
+  EXPECT_NE(st.message().find("speaks sadr wire protocol v" + std::to_string(kProtocolVersion) +
+                              ", the request declared v" + std::to_string(kProtocolVersion + 1)),
             std::string::npos)
       << st.message();
 
@@ -114,7 +117,7 @@ TEST_P(RpcFixture, WrongHeaderVersionAndMalformedFramesAreRefused) {
   EXPECT_NE(st.message().find("malformed frame header"), std::string::npos) << st.message();
 
   // A malformed handshake body.
-  h.set_protocol_version(1);
+  h.set_protocol_version(kProtocolVersion);
   h.SerializeToString(&hb);
   c.call_raw(hb, std::string("\x08\xff", 2), rh, rb);
   common::v1::HandshakeReply hr;

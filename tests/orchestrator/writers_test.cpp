@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "sadr/common/status.hpp"
+#include "sadr/common/version.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
 #include "sadr/orchestrator/hash.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
@@ -222,7 +223,7 @@ TEST(Writers, RunManifestJson) {
   EXPECT_EQ(j.at("timings_s").at("ssa"), 1.5);
   EXPECT_EQ(j.at("plan").at("ssa_service"), true);
   EXPECT_FALSE(j.at("sadr_version").get<std::string>().empty());
-  EXPECT_EQ(j.at("protocol_version"), 1U);
+  EXPECT_EQ(j.at("protocol_version"), kProtocolVersion);
   EXPECT_EQ(utc_now_iso8601().size(), 20U);
   fs::remove_all(dir);
 }

@@ -3,35 +3,31 @@
 
 #include <unistd.h>
 #include <algorithm>
+#include <bit>
 #include <cerrno>
-#include <future>
-#include <map>
-#include <mutex>
-#include <set>
+#include <cstdio>
+#include <memory>
 #include <thread>
 #include <vector>
 #include <zmq.hpp>
 #include <zmq_addon.hpp>
 
+#include "auth.hpp"
+#include "peer_table.hpp"
 #include "sadr/common/log.hpp"
 #include "sadr/common/v1/status.pb.h"
 #include "sadr/common/version.hpp"
 #include "sadr/wire/convert.hpp"
+#include "zmq_support.hpp"
 
 namespace sadr::wire {
 namespace {
 
+using detail::view;
+
 constexpr std::string_view kHandshakeType = "sadr.common.v1.HandshakeRequest";
 constexpr std::string_view kHandshakeReplyType = "sadr.common.v1.HandshakeReply";
 constexpr std::string_view kStatusType = "sadr.common.v1.Status";
-
-/// One context per process, never destroyed: inproc endpoints need a shared
-/// context, and a context torn down at exit would block on sockets that
-/// detached threads still hold.
-zmq::context_t& shared_context() {
-  static auto* ctx = new zmq::context_t(1);
-  return *ctx;
-}
 
 std::string to_bytes(const google::protobuf::Message& m) {
   std::string out;
@@ -53,81 +49,45 @@ std::string status_body(StatusCode code, const std::string& message) {
   return to_bytes(s);
 }
 
-/// A ZeroMQ message that takes ownership of `bytes` instead of copying them
-/// (the coupling loop sends ~40 bytes per particle each step: copies add up).
-zmq::message_t adopt(std::string bytes) {
-  if (bytes.empty()) return zmq::message_t();
-  auto* owned = new std::string(std::move(bytes));
-  return zmq::message_t(
-      owned->data(), owned->size(),
-      [](void*, void* hint) { delete static_cast<std::string*>(hint); }, owned);
-}
-
-std::string_view view(const zmq::message_t& m) {
-  return {static_cast<const char*>(m.data()), m.size()};
-}
-
-// ---- authentication (ZAP, RFC 27): one handler per process ------------------
-
-std::mutex g_auth_mutex;
-std::map<std::string, std::string> g_domain_secrets;    // server ZAP domain -> secret
-std::map<std::string, std::string> g_endpoint_secrets;  // client endpoint -> secret
-
-bool same_secret(std::string_view a, std::string_view b) {
-  unsigned diff = a.size() == b.size() ? 0u : 1u;  // constant time in the content
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
-    diff |= static_cast<unsigned char>(a[i]) ^ static_cast<unsigned char>(b[i]);
-  }
-  return diff == 0;
-}
-
-/// Answers ZAP requests [version, id, domain, address, identity, mechanism,
-/// credentials...]: our domains accept PLAIN with the domain's secret only;
-/// domains of other sockets are accepted (they did not ask for a secret).
-void zap_loop(std::promise<void>* bound) {
-  zmq::socket_t zap(shared_context(), zmq::socket_type::rep);
-  zap.bind("inproc://zeromq.zap.01");
-  bound->set_value();
-  for (;;) {
-    std::vector<zmq::message_t> req;
-    try {
-      if (!zmq::recv_multipart(zap, std::back_inserter(req))) continue;
-    } catch (const zmq::error_t&) {
-      continue;
-    }
-    std::string status = "400", text = "no or wrong run secret";
-    if (req.size() >= 6) {
-      std::lock_guard lock(g_auth_mutex);
-      const auto it = g_domain_secrets.find(req[2].to_string());
-      if (it == g_domain_secrets.end() || (req[5].to_string() == "PLAIN" && req.size() >= 8 &&
-                                           same_secret(view(req[7]), it->second))) {
-        status = "200";
-        text = "OK";
-      }
-    }
-    if (status != "200") log::warn("refused a connection without the run's secret");
-    std::vector<zmq::message_t> out;
-    out.emplace_back(std::string_view("1.0"));
-    if (req.size() > 1) {
-      out.emplace_back(req[1].data(), req[1].size());
-    } else {
-      out.emplace_back();
-    }
-    out.emplace_back(std::string_view(status));
-    out.emplace_back(std::string_view(text));
-    out.emplace_back(std::string_view("sadr"));
+/// Appends `body` as frames of at most kMaxFrameBytes that share ownership of
+/// the bytes instead of copying them (the coupling loop sends ~40 bytes per
+/// particle each step: copies add up). An empty body is one empty frame.
+void append_body(std::vector<zmq::message_t>& out, std::string body) {
+  if (body.empty()) {
     out.emplace_back();
-    zmq::send_multipart(zap, out);
+    return;
+  }
+  auto owned = std::make_shared<const std::string>(std::move(body));
+  for (std::size_t at = 0; at < owned->size(); at += kMaxFrameBytes) {
+    const std::size_t n = std::min(kMaxFrameBytes, owned->size() - at);
+    auto* hold = new std::shared_ptr<const std::string>(owned);
+    out.emplace_back(
+        const_cast<char*>(owned->data() + at), n,
+        [](void*, void* hint) { delete static_cast<std::shared_ptr<const std::string>*>(hint); },
+        hold);
   }
 }
 
-void ensure_zap_handler() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    std::promise<void> bound;
-    std::thread(zap_loop, &bound).detach();
-    bound.get_future().wait();
-  });
+/// The body of a received message, frames[first..]: a view of the frame when
+/// there is one, else the frames joined into `joined`.
+std::string_view body_of(const std::vector<zmq::message_t>& frames, std::size_t first,
+                         std::string& joined) {
+  if (frames.size() == first + 1) return view(frames[first]);
+  joined.clear();
+  for (std::size_t i = first; i < frames.size(); ++i) joined.append(view(frames[i]));
+  return joined;
+}
+
+std::size_t body_size(const std::vector<zmq::message_t>& frames, std::size_t first) {
+  std::size_t n = 0;
+  for (std::size_t i = first; i < frames.size(); ++i) n += frames[i].size();
+  return n;
+}
+
+std::string mib(std::uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
+  return text;
 }
 
 /// Number of frames up to and including the empty delimiter (or all frames if none).
@@ -140,13 +100,10 @@ std::size_t envelope_size(const std::vector<zmq::message_t>& frames) {
 
 }  // namespace
 
-void set_client_secret(const std::string& endpoint, const std::string& secret) {
-  std::lock_guard lock(g_auth_mutex);
-  if (secret.empty()) {
-    g_endpoint_secrets.erase(endpoint);
-  } else {
-    g_endpoint_secrets[endpoint] = secret;
-  }
+bool is_local_endpoint(const std::string& endpoint) {
+  if (endpoint.rfind("tcp://", 0) != 0) return true;
+  const std::string host = endpoint.substr(6, endpoint.rfind(':') - 6);
+  return host == "localhost" || host == "[::1]" || host == "::1" || host.rfind("127.", 0) == 0;
 }
 
 std::string shorten(std::string_view text, std::size_t limit) {
@@ -169,35 +126,45 @@ std::string_view service_name(common::v1::ServiceKind kind) {
 
 struct RpcServer::Impl {
   ServerOptions options;
-  zmq::socket_t socket{shared_context(), zmq::socket_type::router};
-  std::set<std::string> handshaken;  // ROUTER identities that completed a handshake
-  std::string zap_domain;            // registered in g_domain_secrets when a secret is set
+  zmq::socket_t socket{detail::shared_context(), zmq::socket_type::router};
+  zmq::socket_t monitor;  // ACCEPTED / DISCONNECTED / CLOSED of `socket`
+  detail::PeerTable peers{256, 32};
+  std::string zap_domain;     // registered with the ZAP handler when a secret or CURVE is set
+  std::size_t cut_total = 0;  // pending connections closed over the limit
+
+  void drain_events() {
+    detail::MonitorEvent e;
+    while (detail::next_event(monitor, e)) peers.on_event(e);
+    const std::size_t before = cut_total;
+    cut_total += peers.enforce_pending_limit();
+    // Logged when the total reaches 1, 2, 4, 8, ...: a flood of connections
+    // must not become a flood of log lines.
+    if (cut_total > before && std::bit_floor(cut_total) > before) {
+      log::warn("closed connections still in the security handshake (more than ",
+                options.max_pending, " at once; ", cut_total, " so far)");
+    }
+  }
 
   /// Returns the reply [header, body] for one request.
-  std::pair<std::string, std::string> dispatch(const std::string& peer,
+  std::pair<std::string, std::string> dispatch(const std::string& peer, int fd,
                                                const std::vector<zmq::message_t>& frames,
                                                RequestHandler& handler, bool& shutdown);
 };
 
 RpcServer::RpcServer(ServerOptions options) : impl_(std::make_unique<Impl>()) {
   impl_->options = std::move(options);
+  impl_->peers = detail::PeerTable(impl_->options.max_peers, impl_->options.max_pending);
   auto& s = impl_->socket;
   s.set(zmq::sockopt::linger, 0);
-  s.set(zmq::sockopt::maxmsgsize, impl_->options.max_message_bytes);
-  if (!impl_->options.secret.empty()) {
-    ensure_zap_handler();
-    static std::atomic<unsigned> counter{0};
-    impl_->zap_domain = "sadr-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
-    {
-      std::lock_guard lock(g_auth_mutex);
-      g_domain_secrets[impl_->zap_domain] = impl_->options.secret;
-    }
-    s.set(zmq::sockopt::zap_domain, impl_->zap_domain);
-    s.set(zmq::sockopt::plain_server, 1);
-  }
+  s.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(kMaxFrameBytes));
+  s.set(zmq::sockopt::handshake_ivl, 10000);  // a security handshake may take 10 s at most
+  impl_->zap_domain = detail::secure_server(s, impl_->options);
+  impl_->monitor =
+      detail::monitor_socket(s, ZMQ_EVENT_ACCEPTED | ZMQ_EVENT_DISCONNECTED | ZMQ_EVENT_CLOSED);
   try {
     s.bind(impl_->options.endpoint);
   } catch (const zmq::error_t& e) {
+    detail::release_domain(impl_->zap_domain);
     throw Error(StatusCode::kUnavailable, std::string(service_name(impl_->options.kind)) +
                                               " cannot bind '" + impl_->options.endpoint +
                                               "': " + e.what());
@@ -205,30 +172,39 @@ RpcServer::RpcServer(ServerOptions options) : impl_(std::make_unique<Impl>()) {
 }
 
 RpcServer::~RpcServer() {
-  if (impl_ && !impl_->zap_domain.empty()) {
-    std::lock_guard lock(g_auth_mutex);
-    g_domain_secrets.erase(impl_->zap_domain);
-  }
+  if (!impl_) return;
+  detail::stop_monitor(impl_->socket);
+  detail::release_domain(impl_->zap_domain);
 }
 
 std::string RpcServer::endpoint() const {
   return impl_->socket.get(zmq::sockopt::last_endpoint);
 }
 
+std::size_t RpcServer::peer_count() {
+  impl_->drain_events();
+  return impl_->peers.peers();
+}
+
+std::size_t RpcServer::pending_count() {
+  impl_->drain_events();
+  return impl_->peers.pending();
+}
+
 std::pair<std::string, std::string> RpcServer::Impl::dispatch(
-    const std::string& peer, const std::vector<zmq::message_t>& frames, RequestHandler& handler,
-    bool& shutdown) {
+    const std::string& peer, int fd, const std::vector<zmq::message_t>& frames,
+    RequestHandler& handler, bool& shutdown) {
   const std::string me(service_name(options.kind));
   auto refuse = [&](StatusCode code, const std::string& why) {
     log::warn("refused a request: ", why);
     return std::pair{make_header(kStatusType, 0), status_body(code, why)};
   };
-  // frames: [envelope...][empty delimiter][header][body]; the envelope is the
-  // ROUTER identity plus, for REQ clients with req_correlate, a request id.
+  // frames: [envelope...][empty delimiter][header][body...]; the envelope is
+  // the ROUTER identity plus, for REQ clients with req_correlate, a request id.
   const std::size_t payload = envelope_size(frames);
-  if (frames.size() - payload != 2) {
+  if (frames.size() - payload < 2) {
     return refuse(StatusCode::kProtocolMismatch,
-                  "malformed message: expected 2 frames [FrameHeader][body], got " +
+                  "malformed message: expected [FrameHeader][body] (2 or more frames), got " +
                       std::to_string(frames.size() - payload));
   }
   common::v1::FrameHeader header;
@@ -244,7 +220,16 @@ std::pair<std::string, std::string> RpcServer::Impl::dispatch(
                       std::to_string(header.protocol_version()) + " (message " +
                       shorten(header.message_type()) + ")");
   }
-  const std::string_view body = view(frames[payload + 1]);  // parsed in place, not copied
+  const std::size_t bytes = body_size(frames, payload + 1);
+  if (bytes > static_cast<std::uint64_t>(options.max_message_bytes)) {
+    return refuse(StatusCode::kInvalidArgument,
+                  "message of " + std::to_string(bytes) + " bytes (" + mib(bytes) +
+                      ") is above this " + me + "'s limit of " +
+                      mib(static_cast<std::uint64_t>(options.max_message_bytes)) +
+                      " (--max-message-mb)");
+  }
+  std::string joined;
+  const std::string_view body = body_of(frames, payload + 1, joined);  // parsed in place
   if (header.message_type() == kHandshakeType) {
     common::v1::HandshakeRequest req;
     common::v1::HandshakeReply rep;
@@ -252,6 +237,7 @@ std::pair<std::string, std::string> RpcServer::Impl::dispatch(
     rep.set_kind(options.kind);
     rep.set_server_version(kVersion);
     rep.set_pid(static_cast<std::uint32_t>(getpid()));
+    rep.set_max_message_bytes(static_cast<std::uint64_t>(options.max_message_bytes));
     Status st;
     if (!req.ParseFromArray(body.data(), static_cast<int>(body.size()))) {
       st = {StatusCode::kInvalidArgument,
@@ -272,7 +258,7 @@ std::pair<std::string, std::string> RpcServer::Impl::dispatch(
                 std::string(service_name(req.expected_kind())),
             {}};
     } else {
-      handshaken.insert(peer);
+      peers.mark_handshaken(peer, fd);
       log::info("handshake from '", shorten(req.client_name()), "' accepted (protocol v",
                 kProtocolVersion, ")");
     }
@@ -286,10 +272,11 @@ std::pair<std::string, std::string> RpcServer::Impl::dispatch(
                       " accepts " + std::string(kHandshakeType) + " and " +
                       std::string(handler.request_type()));
   }
-  if (!handshaken.count(peer)) {
+  if (!peers.handshaken(peer, fd)) {
     return refuse(StatusCode::kFailedPrecondition,
                   "no handshake: send a sadr.common.v1.HandshakeRequest before " +
-                      std::string(handler.request_type()));
+                      std::string(handler.request_type()) +
+                      " (on every new connection, even with a routing id used before)");
   }
   std::string reply = handler.handle(body, shutdown);
   return {make_header(handler.reply_type(), header.sequence()), std::move(reply)};
@@ -299,13 +286,18 @@ void RpcServer::serve(RequestHandler& handler, const std::atomic<bool>* stop) {
   auto& s = impl_->socket;
   bool shutdown = false;
   while (!shutdown && !(stop && stop->load())) {
-    zmq::pollitem_t items[] = {{s.handle(), 0, ZMQ_POLLIN, 0}};
+    zmq::pollitem_t items[] = {{s.handle(), 0, ZMQ_POLLIN, 0},
+                               {impl_->monitor.handle(), 0, ZMQ_POLLIN, 0}};
     try {
-      zmq::poll(items, 1, impl_->options.poll_interval);
+      zmq::poll(items, 2, impl_->options.poll_interval);
     } catch (const zmq::error_t& e) {
       if (e.num() == EINTR) continue;  // a signal: re-check the stop flag
       throw;
     }
+    // Connection events first: a DISCONNECTED that happened before this
+    // message arrived is already queued, so a reused fd is never mistaken
+    // for the old connection.
+    impl_->drain_events();
     if (!(items[0].revents & ZMQ_POLLIN)) continue;
     std::vector<zmq::message_t> frames;
     try {
@@ -314,14 +306,17 @@ void RpcServer::serve(RequestHandler& handler, const std::atomic<bool>* stop) {
       if (e.num() == EINTR || e.num() == EAGAIN) continue;
       throw;
     }
+    impl_->drain_events();
     const std::size_t env = envelope_size(frames);
     if (env < 2) continue;  // no identity + delimiter: not from a REQ/DEALER peer
+    const int fd = zmq_msg_get(frames.back().handle(), ZMQ_SRCFD);  // -1 over inproc
+    if (fd >= 0) impl_->peers.saw_message(fd);
     const std::string peer = frames[0].to_string();
-    auto [header, body] = impl_->dispatch(peer, frames, handler, shutdown);
+    auto [header, body] = impl_->dispatch(peer, fd, frames, handler, shutdown);
     std::vector<zmq::message_t> out;
     for (std::size_t i = 0; i < env; ++i) out.emplace_back(frames[i].data(), frames[i].size());
     out.emplace_back(header.data(), header.size());
-    out.push_back(adopt(std::move(body)));
+    append_body(out, std::move(body));
     zmq::send_multipart(s, out);
   }
 }
@@ -329,8 +324,41 @@ void RpcServer::serve(RequestHandler& handler, const std::atomic<bool>* stop) {
 // ---------------------------------------------------------------- client
 
 struct RpcClient::Impl {
-  zmq::socket_t socket{shared_context(), zmq::socket_type::req};
-  std::vector<zmq::message_t> reply;  ///< the last reply's [header][body] frames
+  zmq::socket_t socket{detail::shared_context(), zmq::socket_type::req};
+  zmq::socket_t monitor;              // security handshake results and disconnects of `socket`
+  std::string mechanism;              // NULL, PLAIN or CURVE
+  std::string refused;                // why the last security handshake failed ("" if it did not)
+  std::vector<zmq::message_t> reply;  ///< the last reply's [header][body...] frames
+  std::string joined;                 ///< the reply body when it came in several frames
+
+  /// Reads pending monitor events; returns true if one was a disconnect.
+  bool drain_events() {
+    bool disconnected = false;
+    detail::MonitorEvent e;
+    while (detail::next_event(monitor, e)) {
+      switch (e.event) {
+        case ZMQ_EVENT_HANDSHAKE_SUCCEEDED:
+          refused.clear();
+          break;
+        case ZMQ_EVENT_HANDSHAKE_FAILED_AUTH:
+          refused = "it refused our credentials (" + mechanism + ", ZAP status " +
+                    std::to_string(e.value) + "): a wrong or missing run secret or CURVE key";
+          break;
+        case ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL:
+        case ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL:
+          refused = "the ZeroMQ security handshake failed (we offered " + mechanism +
+                    "): it expects another mechanism or key (run secret, or CURVE with "
+                    "--key and --server-key)";
+          break;
+        case ZMQ_EVENT_DISCONNECTED:
+          disconnected = true;
+          break;
+        default:
+          break;
+      }
+    }
+    return disconnected;
+  }
 };
 
 RpcClient::RpcClient(std::string endpoint, std::string peer_name, std::chrono::milliseconds timeout)
@@ -342,13 +370,12 @@ RpcClient::RpcClient(std::string endpoint, std::string peer_name, std::chrono::m
   s.set(zmq::sockopt::linger, 0);
   s.set(zmq::sockopt::req_relaxed, 1);    // may resend after a timeout
   s.set(zmq::sockopt::req_correlate, 1);  // ... and ignore the late reply
-  {
-    std::lock_guard lock(g_auth_mutex);
-    if (const auto it = g_endpoint_secrets.find(endpoint_); it != g_endpoint_secrets.end()) {
-      s.set(zmq::sockopt::plain_username, "sadr");
-      s.set(zmq::sockopt::plain_password, it->second);
-    }
-  }
+  s.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(kMaxFrameBytes));
+  impl_->mechanism = detail::secure_client(s, endpoint_);
+  impl_->monitor =
+      detail::monitor_socket(s, ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH |
+                                    ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
+                                    ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_DISCONNECTED);
   try {
     s.connect(endpoint_);
   } catch (const zmq::error_t& e) {
@@ -357,15 +384,25 @@ RpcClient::RpcClient(std::string endpoint, std::string peer_name, std::chrono::m
   }
 }
 
-RpcClient::~RpcClient() = default;
+RpcClient::~RpcClient() {
+  detail::stop_monitor(impl_->socket);
+}
 
 void RpcClient::exchange(std::string header, std::string body) {
   auto& s = impl_->socket;
-  s.send(zmq::buffer(header), zmq::send_flags::sndmore);
-  s.send(adopt(std::move(body)), zmq::send_flags::none);
-  zmq::pollitem_t items[] = {{s.handle(), 0, ZMQ_POLLIN, 0}};
+  (void)impl_->drain_events();  // a disconnect before this request does not concern it
+  std::vector<zmq::message_t> out;
+  out.emplace_back(header.data(), header.size());
+  append_body(out, std::move(body));
+  zmq::send_multipart(s, out);
+  zmq::pollitem_t items[] = {{s.handle(), 0, ZMQ_POLLIN, 0},
+                             {impl_->monitor.handle(), 0, ZMQ_POLLIN, 0}};
   const auto deadline = std::chrono::steady_clock::now() + timeout_;
+  auto fail = [&](const std::string& why) {
+    throw Error(StatusCode::kUnavailable, peer_name_ + " at " + endpoint_ + ": " + why);
+  };
   for (;;) {
+    if (!impl_->refused.empty()) fail(impl_->refused);
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
@@ -374,21 +411,33 @@ void RpcClient::exchange(std::string header, std::string body) {
                       std::to_string(timeout_.count()) + " ms (is it running?)");
     }
     try {
-      zmq::poll(items, 1, std::min(left, std::chrono::milliseconds(200)));
+      zmq::poll(items, 2, std::min(left, std::chrono::milliseconds(200)));
     } catch (const zmq::error_t& e) {
       if (e.num() == EINTR) continue;
       throw;
     }
     if (items[0].revents & ZMQ_POLLIN) break;
+    if (impl_->drain_events() && impl_->refused.empty()) {
+      // The request died with the connection (REQ does not resend it). If the
+      // process is gone, the liveness check says so by name; give it a moment.
+      for (int i = 0; i < 10 && liveness_; ++i) {
+        liveness_();
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+      fail(
+          "it closed the connection while this request was pending (it stopped, or it "
+          "refused a frame above its limit of " +
+          mib(kMaxFrameBytes) + ")");
+    }
     if (liveness_) liveness_();
   }
   auto& frames = impl_->reply;
   frames.clear();
   (void)zmq::recv_multipart(s, std::back_inserter(frames));
-  if (frames.size() != 2) {
+  if (frames.size() < 2) {
     throw Error(StatusCode::kProtocolMismatch, peer_name_ + " sent a reply with " +
                                                    std::to_string(frames.size()) +
-                                                   " frames, expected 2 [FrameHeader][body]");
+                                                   " frames, expected [FrameHeader][body...]");
   }
 }
 
@@ -396,13 +445,20 @@ void RpcClient::call_raw(const std::string& header, const std::string& body,
                          std::string& reply_header, std::string& reply_body) {
   exchange(header, body);
   reply_header = impl_->reply[0].to_string();
-  reply_body = impl_->reply[1].to_string();
+  reply_body = std::string(body_of(impl_->reply, 1, impl_->joined));
 }
 
 void RpcClient::call(const google::protobuf::Message& request, google::protobuf::Message& reply) {
-  exchange(make_header(request.GetTypeName(), ++sequence_), to_bytes(request));
+  std::string body = to_bytes(request);
+  if (server_limit_ > 0 && body.size() > server_limit_) {
+    throw Error(StatusCode::kInvalidArgument,
+                "the " + request.GetTypeName() + " of " + std::to_string(body.size()) + " bytes (" +
+                    mib(body.size()) + ") is above the limit of " + peer_name_ + " at " +
+                    endpoint_ + ", " + mib(server_limit_) + " (its --max-message-mb); not sent");
+  }
+  exchange(make_header(request.GetTypeName(), ++sequence_), std::move(body));
   const std::string_view rh = view(impl_->reply[0]);
-  const std::string_view rb = view(impl_->reply[1]);  // parsed in place, not copied
+  const std::string_view rb = body_of(impl_->reply, 1, impl_->joined);  // parsed in place
   common::v1::FrameHeader header;
   if (!header.ParseFromArray(rh.data(), static_cast<int>(rh.size()))) {
     throw Error(StatusCode::kProtocolMismatch,
@@ -431,6 +487,7 @@ void RpcClient::call(const google::protobuf::Message& request, google::protobuf:
                                                    std::to_string(rb.size()) + " bytes)");
   }
   impl_->reply.clear();
+  impl_->joined.clear();
 }
 
 common::v1::HandshakeReply RpcClient::handshake(common::v1::ServiceKind expected,
@@ -444,6 +501,7 @@ common::v1::HandshakeReply RpcClient::handshake(common::v1::ServiceKind expected
   const Status st = from_proto(rep.status());
   if (!st.ok())
     throw Error(st.code, peer_name_ + " refused the handshake: " + st.message, st.details);
+  server_limit_ = rep.max_message_bytes();
   return rep;
 }
 

@@ -9,10 +9,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <thread>
 
 #include "sadr/common/log.hpp"
 #include "sadr/common/version.hpp"
+#include "sadr/wire/curve_keys.hpp"
 #include "sadr/wire/shared_geometry.hpp"
 
 namespace sadr::wire {
@@ -28,13 +30,6 @@ log::Level parse_level(const std::string& s) {
   if (s == "warn") return log::Level::kWarn;
   if (s == "debug") return log::Level::kDebug;
   return log::Level::kInfo;
-}
-
-/// ipc://, inproc:// and tcp on 127.0.0.0/8, [::1] or localhost.
-bool loopback_or_local(const std::string& endpoint) {
-  if (endpoint.rfind("tcp://", 0) != 0) return true;
-  const std::string host = endpoint.substr(6, endpoint.rfind(':') - 6);
-  return host == "localhost" || host == "[::1]" || host == "::1" || host.rfind("127.", 0) == 0;
 }
 
 /// What a service leaves on the file system: its ipc socket file, the run
@@ -99,11 +94,19 @@ int run_service_main(int argc, char** argv, common::v1::ServiceKind kind,
   app.add_option("--max-message-mb", max_mb, "largest accepted message [MiB]")
       ->check(CLI::Range(1, 2047))
       ->capture_default_str();
+  std::string key_file, authorized_file;
+  auto* key_opt = app.add_option("--key", key_file,
+                                 "CURVE key pair of this service (from 'sadr keygen FILE'): tcp "
+                                 "traffic is encrypted and only --authorized-keys clients get in");
+  auto* auth_opt = app.add_option("--authorized-keys", authorized_file,
+                                  "public keys of the clients this service accepts, one per "
+                                  "line (the FILE.pub of each client's 'sadr keygen')");
+  key_opt->needs(auth_opt);
+  auth_opt->needs(key_opt);
   bool insecure_bind = false;
   app.add_flag("--insecure-bind", insecure_bind,
-               "allow a tcp endpoint on a non-loopback address: anyone who can reach it can "
-               "read and change the run (no authentication on tcp; prefer loopback plus an "
-               "ssh tunnel, docs/cli.md)");
+               "allow a tcp endpoint on a non-loopback address without --key: anyone who can "
+               "reach it can read and change the run (docs/cli.md, \"Security\")");
   app.add_option("--log-level", level, "error|warn|info|debug")
       ->check(CLI::IsMember({"error", "warn", "info", "debug"}))
       ->capture_default_str();
@@ -115,14 +118,25 @@ int run_service_main(int argc, char** argv, common::v1::ServiceKind kind,
   }
   log::set_component(name);
   log::set_level(parse_level(level));
-  if (!insecure_bind && !loopback_or_local(endpoint)) {
+  if (key_file.empty() && !insecure_bind && !is_local_endpoint(endpoint)) {
     std::fprintf(stderr,
-                 "%s: refusing to bind '%s': a tcp endpoint on a non-loopback address has no "
-                 "authentication (anyone who reaches it can read the particles and stop the "
-                 "run); bind tcp://127.0.0.1:PORT and reach it through an ssh tunnel, or pass "
+                 "%s: refusing to bind '%s': a tcp endpoint on a non-loopback address needs "
+                 "CURVE keys (--key FILE --authorized-keys FILE, made by 'sadr keygen'): "
+                 "without them anyone who reaches it can read the particles and stop the run. "
+                 "Or bind tcp://127.0.0.1:PORT and reach it through an ssh tunnel, or pass "
                  "--insecure-bind on a network you trust (docs/cli.md, \"Security\")\n",
                  name.c_str(), shorten(endpoint).c_str());
     return 2;
+  }
+  std::optional<CurveServerKeys> curve;
+  if (!key_file.empty()) {
+    try {
+      if (!curve_available()) throw Error(StatusCode::kUnavailable, "this libzmq has no CURVE");
+      curve = CurveServerKeys{read_key_file(key_file), read_authorized_keys(authorized_file)};
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
+      return 2;
+    }
   }
   std::signal(SIGTERM, on_signal);
   std::signal(SIGINT, on_signal);
@@ -133,18 +147,23 @@ int run_service_main(int argc, char** argv, common::v1::ServiceKind kind,
     options.endpoint = endpoint;
     options.kind = kind;
     options.max_message_bytes = max_mb * 1024 * 1024;
+    options.curve = curve;
     // The per-run secret of the sadr that launched us (never on the command
     // line, where every user could read it): taken, then wiped from our
     // environment block (/proc/PID/environ).
     if (char* secret = std::getenv("SADR_RUN_SECRET"); secret != nullptr && *secret != '\0') {
-      options.secret = secret;
+      if (!curve) options.secret = secret;
       std::memset(secret, 'x', std::strlen(secret));
       unsetenv("SADR_RUN_SECRET");
     }
     RpcServer server(options);
     std::printf("SADR_ENDPOINT %s\n", server.endpoint().c_str());
     std::fflush(stdout);
-    log::info(name, " ", kVersion, " (pid ", getpid(), ") serving on ", server.endpoint());
+    log::info(name, " ", kVersion, " (pid ", getpid(), ") serving on ", server.endpoint(),
+              curve ? " (CURVE, " + std::to_string(curve->authorized_clients.size()) +
+                          " authorized client keys)"
+              : options.secret.empty() ? " (no authentication)"
+                                       : " (run secret)");
     start_watchdog(name, server.endpoint());
     serve_forever(server, *handler, &g_stop);
     remove_traces(server.endpoint(), 0);

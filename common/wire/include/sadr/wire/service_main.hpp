@@ -4,11 +4,13 @@
 /// line, bind, announce the endpoint, serve until shutdown or SIGTERM/SIGINT.
 ///
 /// Command line: `--endpoint URL` (default tcp://127.0.0.1:* : loopback,
-/// ephemeral port), `--max-message-mb N` (default 2047), `--log-level L`.
+/// ephemeral port), `--max-message-mb N` (default 2047), `--log-level L`,
+/// `--key FILE --authorized-keys FILE` (CURVE; required for a non-loopback
+/// tcp address unless `--insecure-bind`).
 /// Once bound, the service prints exactly one line to stdout,
 /// `SADR_ENDPOINT <resolved endpoint>`, which a parent reads to connect.
 /// Exit codes: 0 clean shutdown (request or signal), 1 cannot bind or
-/// failed, 2 bad command line.
+/// failed, 2 bad command line (or keys, or an unauthenticated non-loopback bind).
 #pragma once
 
 #include <atomic>
