@@ -373,9 +373,11 @@ RpcClient::RpcClient(std::string endpoint, std::string peer_name, std::chrono::m
   s.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(kMaxFrameBytes));
   impl_->mechanism = detail::secure_client(s, endpoint_);
   impl_->monitor =
-      detail::monitor_socket(s, ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH |
-                                    ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
-                                    ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_DISCONNECTED);
+      detail::monitor_socket(s,
+                             ZMQ_EVENT_HANDSHAKE_SUCCEEDED | ZMQ_EVENT_HANDSHAKE_FAILED_AUTH |
+                                 ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
+                                 ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_DISCONNECTED,
+                             /*unbounded=*/true);
   try {
     s.connect(endpoint_);
   } catch (const zmq::error_t& e) {

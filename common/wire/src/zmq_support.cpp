@@ -8,7 +8,7 @@
 
 namespace sadr::wire::detail {
 
-zmq::socket_t monitor_socket(zmq::socket_t& socket, int events) {
+zmq::socket_t monitor_socket(zmq::socket_t& socket, int events, bool unbounded) {
   static std::atomic<unsigned long> counter{0};
   const std::string address = "inproc://sadr-monitor-" + std::to_string(counter++);
   if (zmq_socket_monitor(socket.handle(), address.c_str(), events) != 0) {
@@ -17,6 +17,7 @@ zmq::socket_t monitor_socket(zmq::socket_t& socket, int events) {
   }
   zmq::socket_t pair(shared_context(), zmq::socket_type::pair);
   pair.set(zmq::sockopt::linger, 0);
+  if (unbounded) pair.set(zmq::sockopt::rcvhwm, 0);  // inproc: 0 on either side = no limit
   pair.connect(address);
   return pair;
 }

@@ -28,8 +28,12 @@ struct MonitorEvent {
 };
 
 /// Starts monitoring `socket` for `events` and returns the connected PAIR
-/// socket that receives them.
-zmq::socket_t monitor_socket(zmq::socket_t& socket, int events);
+/// socket that receives them. libzmq's I/O thread blocks when 1000 events
+/// wait unread: a server accepts that (it stops accepting connections until
+/// its loop reads them); a client, which reads them only during calls, asks
+/// for `unbounded` so that an idle client never stalls the I/O thread that
+/// its process's other sockets share.
+zmq::socket_t monitor_socket(zmq::socket_t& socket, int events, bool unbounded = false);
 /// Stops monitoring `socket`. Must come before the monitor socket closes:
 /// libzmq's I/O thread blocks on events that nobody can receive any more.
 inline void stop_monitor(zmq::socket_t& socket) {
