@@ -143,7 +143,25 @@ int cmd_ensemble(const CliOptions& o) {
   std::vector<std::uint64_t> ids;
   std::map<std::size_t, fs::path> expected;  // the first realization's frames
   std::size_t used = 0;
+  std::string hash, hash_of;  // the effective scene of the first realization with a run.json
   for (const auto& r : realizations) {
+    // Never mix runs of different effective scenes (an edited scene, other --set values).
+    if (fs::exists(r / "run.json")) {
+      std::string h;
+      try {
+        h = nlohmann::json::parse(read_file_bytes(r / "run.json")).value("scene_hash", "");
+      } catch (const nlohmann::json::exception& e) {
+        throw InvalidArgument((r / "run.json").string() + ": not valid JSON: " + e.what());
+      }
+      if (hash.empty()) {
+        hash = h;
+        hash_of = r.string();
+      } else if (!h.empty() && h != hash) {
+        throw InvalidArgument(r.string() + " ran the effective scene " + h + ", " + hash_of +
+                              " ran " + hash +
+                              "; refusing to combine runs of different scenes (or --set values)");
+      }
+    }
     const auto frames = list_csv_frames(r);
     if (frames.empty()) {
       std::fprintf(stderr, "sadr: %s has no CSV frames (add csv to output.formats); skipped\n",

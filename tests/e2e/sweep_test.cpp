@@ -420,6 +420,21 @@ TEST(EnsembleCli, BadCellsNaNsAndMissingFramesAreRefusedNamingFileAndRow) {
   EXPECT_NE(read_file(d / "missing.log").find("frame frame_000002.csv is missing"),
             std::string::npos)
       << read_file(d / "missing.log");
+  // A realization of another effective scene (other --set values) is refused, naming both.
+  fs::copy_file(d / "e" / "realization_0001" / "frames" / "frame_000002.csv",
+                d / "e" / "realization_0002" / "frames" / "frame_000002.csv");
+  ASSERT_EQ(run(bin("sadr") + " run " + scene.string() +
+                    " -q --realization 3 --set reactions[birth].rate=800 -o " + (d / "e").string(),
+                d / "other.log"),
+            0)
+      << read_file(d / "other.log");
+  EXPECT_EQ(run(ens, d / "mixed.log"), 1);
+  EXPECT_NE(read_file(d / "mixed.log").find("realization_0003 ran the effective scene"),
+            std::string::npos)
+      << read_file(d / "mixed.log");
+  EXPECT_NE(read_file(d / "mixed.log").find("refusing to combine runs of different scenes"),
+            std::string::npos)
+      << read_file(d / "mixed.log");
   if (!HasFailure()) fs::remove_all(d);
 }
 
