@@ -102,9 +102,9 @@ def coupled(d, rev):
             w(f"| 1/{round(1 / row['dx'])} | {row['particles']} | {r} | {e(v['error'])} | "
               f"{e(v['error_vs_kappa'])} | {e(v['noise'])} | {v['cpu_s']:.2f} |")
         finals.append((row["dx"], row["by_r"][rs[-1]]))
-    rows1 = c["rows"][0]["by_r"]
+    rows1 = c["rows"][-1]["by_r"]  # the finest resolution: the least bias
     rs = sorted(rows1, key=int)
-    w(f"\nAgainst R (dx = {c['rows'][0]['dx']:g}): observed slope of the error "
+    w(f"\nAgainst R (dx = 1/{round(1 / c['rows'][-1]['dx'])}): observed slope of the error "
       f"{order([int(r) for r in rs], [rows1[r]['error'] for r in rs]):.2f} (noise alone: -0.5). "
       "Against dx at the largest R: " + ", ".join(
           f"dx = 1/{round(1 / dx)}: error {e(v['error'])} (noise {e(v['noise'])}, bias "
