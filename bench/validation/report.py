@@ -158,8 +158,9 @@ def main():
     mode.add_argument("--quick", action="store_true")
     mode.add_argument("--full", action="store_true")
     ap.add_argument("--build", default=str(ROOT / "build/release"))
-    ap.add_argument("--without", default="/work/baseline/build/release/bin",
-                    help="bin/ of a build without the frame-to-frame skip (skip table)")
+    ap.add_argument("--without", default="",
+                    help="bin/ of a build from before the frame-to-frame skip (skip table; "
+                         "default: none, the stored bench/results/skip_frame_to_frame.md)")
     ap.add_argument("--out", default=str(ROOT / "docs"))
     ap.add_argument("--only", default="",
                     help="comma-separated gtest ids to run (default: all of the mode); "
@@ -241,7 +242,7 @@ def main():
     splitting_order.plot(data["splitting"], figs / "splitting_order.png")
 
     skip_json = ROOT / "bench/results/skip_frame_to_frame.json"
-    if pathlib.Path(a.without, "sadr").exists():
+    if a.without and pathlib.Path(a.without, "sadr").exists():
         step("skip bench")
         run_measured([sys.executable, ROOT / "bench/validation/skip_bench.py", "--without",
                       a.without, "--with", build / "bin", "--pairs", "3" if quick else "5"])
