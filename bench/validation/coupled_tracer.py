@@ -192,6 +192,10 @@ def main():
     ap.add_argument("--realizations", type=int, default=64)
     ap.add_argument("--plot", default=None)
     ap.add_argument("--json", default=None)
+    ap.add_argument("--check", action="store_true",
+                    help="exit 1 unless, at the finest dx and largest R, the error against "
+                         "kappa_eff is within 2 noise levels and the error against D is not "
+                         "(ctest validation_coupled_tracer)")
     a = ap.parse_args()
     d = run(a.bin, a.dx, a.realizations)
     print("dx,particles,r,error_vs_kappa_eff,error_vs_kappa,noise,cpu_s")
@@ -206,7 +210,19 @@ def main():
         plot(d, a.plot)
     if a.json:
         pathlib.Path(a.json).write_text(json.dumps(d, indent=1) + "\n")
+    if a.check:
+        # error^2 / noise^2 is about chi^2_n / n over n particles (fewer independent ones, as
+        # the profile is smooth): a ratio above 2 from noise alone needs chi^2_n / n > 4,
+        # probability < 1e-6 for n >= 16 independent terms; the bound is the false-failure rate.
+        row = d["rows"][-1]
+        v = row["by_r"][max(row["by_r"], key=int)]
+        ok = v["error"] <= 2 * v["noise"] < v["error_vs_kappa"]
+        print(f"check: dx = {row['dx']:g}: error vs kappa_eff {v['error']:.3e}, vs D "
+              f"{v['error_vs_kappa']:.3e}, noise {v['noise']:.3e}: "
+              f"{'ok' if ok else 'FAILED'} (needs error <= 2 noise < error vs D)")
+        return 0 if ok else 1
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

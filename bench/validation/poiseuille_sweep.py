@@ -195,6 +195,9 @@ def main():
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--plot", default=None)
     ap.add_argument("--json", default=None)
+    ap.add_argument("--check", action="store_true",
+                    help="exit 1 unless every run finished and the observed order in dx is "
+                         "0.8..1.2 at every c0 (ctest validation_poiseuille_sweep)")
     a = ap.parse_args()
     d = run(a.bin, a.dx, a.c0, a.end, a.workers)
     print("dx,c0,fluid_particles,error,max_density_dev,cpu_s,wall_loop_s")
@@ -208,7 +211,22 @@ def main():
         plot(d, a.plot)
     if a.json:
         pathlib.Path(a.json).write_text(json.dumps(d, indent=1) + "\n")
+    if a.check:
+        from wp_sweeps import order
+
+        bad = [r for r in d["rows"] if "failed" in r]
+        orders = {}
+        for c0 in sorted({r["c0"] for r in d["rows"]}):
+            rs = sorted((r for r in d["rows"] if r["c0"] == c0 and "failed" not in r),
+                        key=lambda r: r["dx"])
+            orders[c0] = order([r["dx"] for r in rs], [r["error"] for r in rs])
+        ok = not bad and all(0.8 <= o <= 1.2 for o in orders.values())
+        print("check: observed order in dx per c0: "
+              + ", ".join(f"{c}: {o:.2f}" for c, o in orders.items())
+              + f"; failed runs: {len(bad)}: {'ok' if ok else 'FAILED'}")
+        return 0 if ok else 1
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -34,6 +34,7 @@ window for figures to quote. The pieces:
   * the coupled stochastic case (a tracer in a flow) against R, resolution and
     tau through `sadr sweep` (coupled_tracer.py);
   * where tau matters in Table 1's SSA column (annihilation_table1.tau_independence);
+    reduced versions of the two sweeps: ctest -L validation -R 'validation_(poiseuille_sweep|coupled_tracer)';
   * Lie vs Strang against the exact continuous answer, observed orders
     (splitting_order.py);
   * the plan's skips with and without (skip_bench.py; needs a build from before

@@ -66,7 +66,8 @@ def poiseuille(d, rev):
       "resolutions (the fluid-wall pressure term moves the effective no-slip plane), at a "
       "cost that grows as c0 once the acoustic limit takes over from the viscous one (the "
       "CPU column). The cheapest run at a given error is at the lowest c0 that still holds "
-      "the density variation a scene needs (1 % is the usual rule: c0 >= 10 u_max).\n")
+      "the density variation a scene needs (1 % is the usual rule: c0 >= 10 u_max). Reduced "
+      "version: `ctest -L validation -R validation_poiseuille_sweep` (order 0.8-1.2 in dx).\n")
     return L
 
 
@@ -110,7 +111,9 @@ def coupled(d, rev):
           f"dx = 1/{round(1 / dx)}: error {e(v['error'])} (noise {e(v['noise'])}, bias "
           f"{e(math.sqrt(max(0.0, v['error'] ** 2 - v['noise'] ** 2)))})" for dx, v in finals)
       + " (against kappa_eff). Where the error is at the noise level, more realizations, not "
-      "resolution, reduce it; against D the error stops at the regularisation bias.\n")
+      "resolution, reduce it; against D the error stops at the regularisation bias. Reduced "
+      "version: `ctest -L validation -R validation_coupled_tracer` (error within 2 noise "
+      "levels of the kappa_eff answer, and not of D's).\n")
     if c.get("tau_rows"):
         w("| coupling step tau | dx | R | error (kappa_eff) | noise level |\n|---|---|---|---|---|")
         for r in c["tau_rows"]:
