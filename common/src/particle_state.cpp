@@ -53,6 +53,7 @@ void check_len(const char* field, std::size_t got, std::size_t want, bool option
 }
 }  // namespace
 
+// Also checks that each volume m_i / rho_i is a finite normal number (below).
 void ParticleState::validate() const {
   const std::size_t n = size();
   if (dimension < 1 || dimension > 3) {
@@ -72,6 +73,14 @@ void ParticleState::validate() const {
     if (!(std::isfinite(densities[i]) && densities[i] > 0)) {
       throw InvalidArgument("particle " + std::to_string(i) + ": density = " +
                             format_value(densities[i]) + " (must be finite and > 0)");
+    }
+    // Both may be fine while V = m / rho is not (1 / 1e-310 overflows; 1e-310 / 1 is
+    // subnormal): the SSA's rates divide and multiply by V (found by fuzz_ssa_requests).
+    const double volume = masses[i] / densities[i];
+    if (!std::isnormal(volume)) {
+      throw InvalidArgument("particle " + std::to_string(i) + ": volume mass / density = " +
+                            format_value(masses[i]) + " / " + format_value(densities[i]) + " = " +
+                            format_value(volume) + " (must be a finite, normal number > 0)");
     }
     for (int a = 0; a < 3; ++a) {
       if (!std::isfinite(positions[3 * i + a])) {

@@ -46,7 +46,21 @@ void validate_particles(const Model& model, const ParticleState& p) {
                           " particles (allowed: < 2^32 - 1)");
   }
   const Box& b = model.box;
+  // Every weight is at most 4 V_max F(0) (both conventions), a row sum N times that:
+  // a volume beyond this bound would make a weight or a row sum overflow to inf and
+  // the rates NaN (a density of 1e-310 is > 0 and finite; found by fuzz_ssa_requests).
+  const double volume_limit =
+      std::numeric_limits<double>::max() /
+      (4.0 * lucy_f(0.0, model.smoothing_length, b.dimension) * static_cast<double>(p.size()));
   for (std::size_t i = 0; i < p.size(); ++i) {
+    if (const double v = p.volume(i); !(v <= volume_limit)) {
+      throw InvalidArgument("particle " + std::to_string(i) +
+                                ": volume mass / density = " + format_value(p.masses[i]) + " / " +
+                                format_value(p.densities[i]) + " = " + format_value(v) +
+                                " (allowed: <= " + format_value(volume_limit) +
+                                ", so that the jump rates stay finite)",
+                            {{"field", "densities"}, {"value", format_value(p.densities[i])}});
+    }
     for (int a = 0; a < b.dimension; ++a) {
       const double x = p.positions[3 * i + a];
       if (!b.periodic[a] && (x < b.lo[a] || x > b.hi[a])) {
