@@ -2,6 +2,7 @@
 /// \file sdpd_restart.cpp
 /// SdpdBackend: the particle state it reports and the state it saves and restores (bit-exact
 /// restarts; the blob header and versioning are the fluid core's, state_blob.hpp).
+#include <cmath>
 #include <string>
 
 #include "sadr/common/status.hpp"
@@ -68,6 +69,22 @@ void SdpdBackend::restore_state(BlobReader& r, std::uint32_t version) {
   OpenChannel::Saved open;
   if (version == kBlobVersionOpen) open = OpenChannel::read(r, wall_);
   r.expect_end();
+  // Nothing non-finite is committed (fuzz_fluid_requests: an inf list reference
+  // position reached the cell binning below as an out-of-range int conversion).
+  auto require_finite = [](const std::vector<double>& a, const char* what) {
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      if (!std::isfinite(a[k])) {
+        throw InvalidArgument("restore: blob " + std::string(what) + "[" + std::to_string(k) +
+                              "] = " + format_value(a[k]) + " (must be finite)");
+      }
+    }
+  };
+  if (!std::isfinite(t)) throw InvalidArgument("restore: blob time = " + format_value(t));
+  require_finite(y.x, "positions");
+  require_finite(y.v, "velocities");
+  require_finite(y.rho, "densities");
+  for (const auto& c : y.c) require_finite(c, "concentrations");
+  require_finite(ref, "list reference positions");
   y_ = std::move(y);
   if (open_.enabled()) {
     open_.commit(std::move(open), kinds_);

@@ -25,8 +25,9 @@ CellListBuilder::CellListBuilder(const Box& box, double cutoff) : pbox_(box), cu
                             "); enlarge the box or reduce smoothing_length");
     }
     // cells of width >= cutoff / kCellReach: a neighbour lies at most kCellReach cells away
-    ncell_[a] = std::max(1, static_cast<int>(std::floor(kCellReach * len / cutoff)));
-    ncell_[a] = std::min(ncell_[a], 1 << 20);
+    // (capped as a double, before the int conversion could overflow)
+    ncell_[a] = static_cast<int>(
+        std::clamp(std::floor(kCellReach * len / cutoff), 1.0, static_cast<double>(1 << 20)));
     inv_cell_[a] = ncell_[a] / len;
   }
 }
@@ -44,8 +45,10 @@ void CellListBuilder::build(std::span<const double> positions, NeighborList& out
   for (std::size_t i = 0; i < n; ++i) {
     std::array<int, 3> c{0, 0, 0};
     for (int a = 0; a < dim; ++a) {
-      int k = static_cast<int>(std::floor((positions[3 * i + a] - box.lo[a]) * inv_cell_[a]));
-      c[a] = std::clamp(k, 0, ncell_[a] - 1);
+      // Clamped as a double: a position far outside the box (1e300) would overflow the
+      // int conversion (undefined behaviour; found by fuzz_fluid_requests).
+      const double k = std::floor((positions[3 * i + a] - box.lo[a]) * inv_cell_[a]);
+      c[a] = static_cast<int>(std::clamp(k, 0.0, static_cast<double>(ncell_[a] - 1)));
     }
     coord[i] = c;
     cell_of[i] = static_cast<std::uint32_t>(

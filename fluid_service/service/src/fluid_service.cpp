@@ -2,6 +2,7 @@
 #include "sadr/fluid/fluid_service.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -254,8 +255,48 @@ void FluidServiceHandler::restore(const v1::RestoreRequest& req) {
                           std::string(b.name()) + "' (" + want + " v" +
                           std::to_string(kSnapshotVersion) + ")");
   }
-  b.restore(snap.blob());
+  // A blob that reads back into a state the model cannot have (a non-finite
+  // position or concentration, another particle count; found by fuzz_fluid_requests)
+  // is refused, and the state before the Restore is put back.
+  const std::string before = b.save();
+  try {
+    b.restore(snap.blob());
+    check_restored_state();
+  } catch (...) {
+    b.restore(before);
+    throw;
+  }
   have_last_ = false;
+}
+
+void FluidServiceHandler::check_restored_state() {
+  FluidBackend& b = backend();
+  if (!(std::isfinite(b.time()) && b.time() >= 0)) {
+    throw InvalidArgument("restore: the blob's time = " + format_value(b.time()) +
+                          " (must be finite and >= 0)");
+  }
+  b.read_state(scratch_);
+  try {
+    scratch_.validate();
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(std::string("restore: the blob's ") + e.what());
+  }
+  if (scratch_.size() != n_particles_ || scratch_.dimension != model_.box.dimension) {
+    throw InvalidArgument("restore: the blob holds " + std::to_string(scratch_.size()) +
+                          " particles in " + std::to_string(scratch_.dimension) + "D, the model " +
+                          std::to_string(n_particles_) + " in " +
+                          std::to_string(model_.box.dimension) + "D");
+  }
+  for (std::size_t k = 0; k < model_.species.size(); ++k) {
+    const auto& c = b.concentrations(static_cast<int>(k));
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      if (!std::isfinite(c[i])) {
+        throw InvalidArgument("restore: the blob's concentration of '" + model_.species[k].name +
+                              "' at particle " + std::to_string(i) + " = " + format_value(c[i]) +
+                              " (must be finite)");
+      }
+    }
+  }
 }
 
 }  // namespace sadr::fluid

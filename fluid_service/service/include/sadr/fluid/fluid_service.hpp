@@ -45,6 +45,9 @@ class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::Flui
   void set_counts(const common::v1::SpeciesFields& counts, const std::string& where);
   void snapshot(const v1::SnapshotRequest& req, v1::SnapshotReply& rep) const;
   void restore(const v1::RestoreRequest& req);
+  /// After a Restore: time, particles (ParticleState::validate, count, dimension) and
+  /// the concentrations are what the model allows; throws InvalidArgument.
+  void check_restored_state();
   FluidBackend& backend() const;
   /// Re-imposes the inflow buffers' concentrations on the particles inside them.
   void apply_inflows();
