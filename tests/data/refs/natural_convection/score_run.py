@@ -56,6 +56,10 @@ def lucy(r, h):
 
 
 class Interpolator:
+    """Shepard-normalised Lucy interpolation of theta, vx, vy over all particles within h."""
+
+    K = 64  # neighbours looked at; about pi (h/dx)^2 = 28 lie within h = 3 dx
+
     def __init__(self, frame, h):
         self.pos = np.column_stack((frame["x"], frame["y"]))
         self.vol = frame["mass"] / frame["density"]
@@ -64,15 +68,123 @@ class Interpolator:
         self.h = h
 
     def __call__(self, pts):
-        out = {k: np.zeros(len(pts)) for k in self.fields}
-        for i, nb in enumerate(self.tree.query_ball_point(pts, self.h)):
-            nb = np.array(nb, dtype=int)
-            if len(nb) == 0:
-                sys.exit("no particle within h of (%.4f, %.4f)" % tuple(pts[i]))
-            w = lucy(np.linalg.norm(self.pos[nb] - pts[i], axis=1), self.h) * self.vol[nb]
-            for k, f in self.fields.items():
-                out[k][i] = np.dot(w, f[nb]) / w.sum()
-        return out
+        dist, idx = self.tree.query(pts, k=self.K, distance_upper_bound=self.h)
+        if np.any(np.isfinite(dist[:, -1])):
+            i = int(np.argmax(np.isfinite(dist[:, -1])))
+            sys.exit("more than %d particles within h = %.4g of (%.4f, %.4f): raise Interpolator.K"
+                     % (self.K, self.h, pts[i][0], pts[i][1]))
+        inside = np.isfinite(dist)
+        if not np.all(inside.any(axis=1)):
+            i = int(np.argmin(inside.any(axis=1)))
+            sys.exit("no particle within h = %.4g of (%.4f, %.4f)" % (self.h, pts[i][0], pts[i][1]))
+        idx = np.where(inside, idx, 0)
+        w = np.where(inside, lucy(np.where(inside, dist, self.h), self.h) * self.vol[idx], 0.0)
+        norm = w.sum(axis=1)
+        return {k: np.sum(w * f[idx], axis=1) / norm for k, f in self.fields.items()}
+
+
+class Case:
+    """The references of one Ra: continuum profile (finest mesh), digitised points, Nu_half."""
+
+    def __init__(self, ra):
+        self.ra = int(round(ra))
+        self.kappa = 1.0 / math.sqrt(ra * SC)
+        self.vscale = math.sqrt(ra / SC)
+        prof = load(os.path.join(HERE, "continuum_profiles.csv"))
+        self.mesh = int(prof["mesh"].max())
+        sel = (prof["Ra"] == self.ra) & (prof["mesh"] == self.mesh)
+        if not np.any(sel):
+            sys.exit("no continuum profile for Ra = %d" % self.ra)
+        keep = prof["xstar"][sel] < 1.0
+        self.x_ref = prof["xstar"][sel][keep]
+        self.ref = {"theta": prof["theta"][sel][keep], "vstar": prof["vstar"][sel][keep]}
+        dig = load(os.path.join(HERE, "moukalled_digitised_profiles.csv"))
+        self.x_dig, self.dig, self.ref_at_dig = {}, {}, {}
+        for q in ("theta", "vstar"):
+            d = (dig["Ra"] == self.ra) & (dig["quantity"] == q) & (dig["xstar"] > 0.6) & (dig["xstar"] < 1.0)
+            self.x_dig[q], self.dig[q] = dig["xstar"][d], dig["value"][d]
+            self.ref_at_dig[q] = CubicSpline(self.x_ref, self.ref[q])(self.x_dig[q])
+        nus = load(os.path.join(HERE, "continuum_nusselt.csv"))
+        self.nu_ref = float(nus["Nu_half_cylinder"][(nus["Ra"] == self.ra) & (nus["mesh"] == self.mesh)][0])
+
+
+# contours for the heat flow Q = oint (v.n theta / kappa - d theta / dn) ds (n pointing away from the
+# cylinder): circles around the cylinder, and squares inset from the enclosure walls by more than h
+CIRCLES_NEAR = (0.15, 0.175, 0.2)
+CIRCLES_MID = tuple(np.linspace(0.2, 0.4, 5))
+SQUARE_INSETS = (0.05, 0.075, 0.1)
+
+
+def circle_flow(ip, kappa, r, dx, n=256):
+    phi = np.linspace(0, 2 * math.pi, n, endpoint=False)
+    c, s = np.cos(phi), np.sin(phi)
+    v = {tag: ip(np.column_stack((0.5 + rr * c, 0.5 + rr * s)))
+         for tag, rr in (("m", r - dx / 2), ("c", r), ("p", r + dx / 2))}
+    vn = v["c"]["vx"] * c + v["c"]["vy"] * s
+    dtdn = (v["p"]["theta"] - v["m"]["theta"]) / dx
+    return float(np.mean(vn * v["c"]["theta"] / kappa - dtdn) * 2 * math.pi * r)
+
+
+def square_flow(ip, kappa, inset, dx, n=64):
+    """Heat flow out through the square [inset, 1 - inset]^2 (midpoint rule, n points a side)."""
+    a, b = inset, 1.0 - inset
+    t = a + (np.arange(n) + 0.5) * (b - a) / n
+    total = 0.0
+    for nx, ny in ((1, 0), (-1, 0), (0, 1), (0, -1)):
+        if nx:
+            base = np.column_stack((np.full(n, b if nx > 0 else a), t))
+        else:
+            base = np.column_stack((t, np.full(n, b if ny > 0 else a)))
+        off = np.array([nx, ny]) * dx / 2
+        vm, vc, vp = ip(base - off), ip(base), ip(base + off)
+        vn = vc["vx"] * nx + vc["vy"] * ny
+        total += np.mean(vn * vc["theta"] / kappa - (vp["theta"] - vm["theta"]) / dx) * (b - a)
+    return float(total)
+
+
+def measure(fr, case, h, dx):
+    """Everything one frame gives (fr: columns of a CSV frame, theta already scaled to 0..1):
+    centre-line profiles at the reference's and the digitised points, heat flows through the
+    contours, kinetic energy and density variation of the fluid."""
+    ip = Interpolator(fr, h)
+    fluid = fr["kind"] == 0
+    out = {"time": float(fr["time"][0])}
+    line = ip(np.column_stack((case.x_ref, np.full_like(case.x_ref, 0.5))))
+    out["theta_ref"], out["vstar_ref"] = line["theta"], line["vy"] * case.vscale
+    for q in ("theta", "vstar"):
+        v = ip(np.column_stack((case.x_dig[q], np.full_like(case.x_dig[q], 0.5))))
+        out[q + "_dig"] = v["theta"] if q == "theta" else v["vy"] * case.vscale
+    out["Q_near"] = np.array([circle_flow(ip, case.kappa, r, dx) for r in CIRCLES_NEAR])
+    out["Q"] = np.array([circle_flow(ip, case.kappa, r, dx) for r in CIRCLES_MID])
+    out["Q_enclosure"] = np.array([square_flow(ip, case.kappa, d, dx) for d in SQUARE_INSETS])
+    v2 = fr["vx"][fluid] ** 2 + fr["vy"][fluid] ** 2
+    out["kinetic_energy"] = float(0.5 * np.sum(fr["mass"][fluid] * v2))
+    out["max_speed"] = float(np.sqrt(np.max(v2)))
+    out["max_density_variation"] = float(np.max(np.abs(fr["density"][fluid] - 1.0)))
+    return out
+
+
+def score(avg, case):
+    """The errors of (averaged) measurements `avg` (as from measure) against both references."""
+    out = {"Ra": case.ra, "reference_mesh": case.mesh}
+    for q in ("theta", "vstar"):
+        out[q + "_err_ref"] = paper_metric(avg[q + "_ref"] - case.ref[q])
+        out[q + "_maxabs_ref"] = float(np.max(np.abs(avg[q + "_ref"] - case.ref[q])))
+    for q in ("theta", "vstar"):
+        out[q + "_err_digitised"] = paper_metric(avg[q + "_dig"] - case.dig[q])
+        # the continuum reference at the digitised points: the same n as the paper's metric
+        out[q + "_err_ref_at_digitised_x"] = paper_metric(avg[q + "_dig"] - case.ref_at_dig[q])
+    out["Nu_half"] = float(np.mean(avg["Q"]) / 2)
+    out["Nu_half_spread_over_r"] = float((np.max(avg["Q"]) - np.min(avg["Q"])) / 2)
+    out["Nu_half_near_cylinder"] = float(np.mean(avg["Q_near"]) / 2)
+    out["Nu_half_enclosure"] = float(np.mean(avg["Q_enclosure"]) / 2)
+    out["Nu_half_reference"] = case.nu_ref
+    return out
+
+
+def average(measurements):
+    keys = [k for k, v in measurements[0].items() if not isinstance(v, str)]
+    return {k: sum(m[k] for m in measurements) / len(measurements) for k in keys}
 
 
 def main():
@@ -86,64 +198,16 @@ def main():
                     help="stochastic variant: molecules per particle at theta = 1 (theta = count / N)")
     ap.add_argument("--json")
     args = ap.parse_args()
-    ra = int(round(args.ra))
-    kappa = 1.0 / math.sqrt(args.ra * SC)
-    prof = load(os.path.join(HERE, "continuum_profiles.csv"))
-    mesh = int(prof["mesh"].max())
-    sel = (prof["Ra"] == ra) & (prof["mesh"] == mesh)
-    if not np.any(sel):
-        sys.exit("no continuum profile for Ra = %d" % ra)
-    xr = prof["xstar"][sel]
-    keep = xr < 1.0
-    xr, tr, vr = xr[keep], prof["theta"][sel][keep], prof["vstar"][sel][keep]
-    dig = load(os.path.join(HERE, "moukalled_digitised_profiles.csv"))
-    nus = load(os.path.join(HERE, "continuum_nusselt.csv"))
-    nu_ref = float(nus["Nu_half_cylinder"][(nus["Ra"] == ra) & (nus["mesh"] == mesh)][0])
-    frames = [args.frame] + args.average
-    sums = None
-    radii = np.linspace(0.2, 0.4, 5)
-    phis = np.linspace(0, 2 * math.pi, 256, endpoint=False)
-    drho = 0.0
-    for path in frames:
+    case = Case(args.ra)
+    ms = []
+    for path in [args.frame] + args.average:
         fr = read_frame(path)
         if args.molecules > 0:
             fr["theta"] = fr["theta"] / args.molecules
-        fluid = fr["kind"] == 0
-        drho = max(drho, float(np.max(np.abs(fr["density"][fluid] - 1.0))))
-        ip = Interpolator(fr, args.h)
-        res = {}
-        on_line = ip(np.column_stack((xr, np.full_like(xr, 0.5))))
-        res["theta_ref"], res["vstar_ref"] = on_line["theta"], on_line["vy"] * math.sqrt(args.ra / SC)
-        for q in ("theta", "vstar"):
-            d = (dig["Ra"] == ra) & (dig["quantity"] == q) & (dig["xstar"] > 0.6) & (dig["xstar"] < 1.0)
-            xd = dig["xstar"][d]
-            v = ip(np.column_stack((xd, np.full_like(xd, 0.5))))
-            res[q + "_dig"] = v["theta"] if q == "theta" else v["vy"] * math.sqrt(args.ra / SC)
-        qs = []
-        for r in radii:
-            pts = {}
-            for tag, rr in (("m", r - args.dx / 2), ("c", r), ("p", r + args.dx / 2)):
-                pts[tag] = ip(np.column_stack((0.5 + rr * np.cos(phis), 0.5 + rr * np.sin(phis))))
-            vr_c = pts["c"]["vx"] * np.cos(phis) + pts["c"]["vy"] * np.sin(phis)
-            dtdr = (pts["p"]["theta"] - pts["m"]["theta"]) / args.dx
-            qs.append(np.mean(vr_c * pts["c"]["theta"] / kappa - dtdr) * 2 * math.pi * r)
-        res["Q"] = np.array(qs)
-        sums = res if sums is None else {k: sums[k] + res[k] for k in res}
-    avg = {k: v / len(frames) for k, v in sums.items()}
-    out = {"Ra": ra, "frames": len(frames), "reference_mesh": mesh}
-    out["theta_err_ref"] = paper_metric(avg["theta_ref"] - tr)
-    out["vstar_err_ref"] = paper_metric(avg["vstar_ref"] - vr)
-    out["theta_maxabs_ref"] = float(np.max(np.abs(avg["theta_ref"] - tr)))
-    out["vstar_maxabs_ref"] = float(np.max(np.abs(avg["vstar_ref"] - vr)))
-    for q, ref in (("theta", tr), ("vstar", vr)):
-        d = (dig["Ra"] == ra) & (dig["quantity"] == q) & (dig["xstar"] > 0.6) & (dig["xstar"] < 1.0)
-        out[q + "_err_digitised"] = paper_metric(avg[q + "_dig"] - dig["value"][d])
-        # the continuum reference at the digitised points: the same n as the paper's metric
-        out[q + "_err_ref_at_digitised_x"] = paper_metric(avg[q + "_dig"] - CubicSpline(xr, ref)(dig["xstar"][d]))
-    out["Nu_half"] = float(np.mean(avg["Q"]) / 2)
-    out["Nu_half_spread_over_r"] = float((np.max(avg["Q"]) - np.min(avg["Q"])) / 2)
-    out["Nu_half_reference"] = nu_ref
-    out["max_density_variation"] = drho
+        ms.append(measure(fr, case, args.h, args.dx))
+    out = score(average(ms), case)
+    out["frames"] = len(ms)
+    out["max_density_variation"] = max(m["max_density_variation"] for m in ms)
     for k, v in out.items():
         print("%-24s %s" % (k, ("%.4g" % v) if isinstance(v, float) else v))
     if args.json:

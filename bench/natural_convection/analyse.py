@@ -1,0 +1,215 @@
+#!/usr/bin/python3
+"""Steady state and time (and ensemble) averages of a natural-convection run
+(examples/natural_convection_ra1e*.yaml; docs/natural-convection.md).
+
+    /usr/bin/python3 bench/natural_convection/analyse.py RUN [RUN ...] --ra 1e4
+        [--molecules N] [--threshold 1e-3] [--rate-window 10] [--window T] [--json OUT.json]
+
+RUN is the output directory of `sadr run` (frames/frame_*.csv), or of `sadr run -r R`
+(realization_*/frames/frame_*.csv: every realization is one run). Several RUNs are realizations of
+the same scene (e.g. different seeds). Each frame is measured with score_run.py's `measure`
+(centre-line profiles, heat flows, kinetic energy, density variation); the measurements are cached
+in RUN/.../natural_convection_series.json so that a second call reads no frame twice.
+
+Steady-state criterion: for each quantity X of {kinetic energy E of the fluid, Nu near the cylinder
+(circles r = 0.15-0.2), Nu on the enclosure (squares 0.05-0.1 inside the walls)}, the relative rate of
+change |dX/dt| / |X| is the least-squares slope of X over the frames in [t - W, t] (W = --rate-window)
+divided by their mean. The run is steady from the first frame time t_s from which on every later
+frame's rates are all below --threshold (per unit time). Then the profiles and Nu are averaged over
+the frames in [t_s, t_s + T] (T = --window; default: to the end) and over the realizations, and scored
+against the continuum reference and the digitised profiles (score_run.score).
+
+Noise (reported for every run, deterministic ones included, where it is the residual unsteadiness):
+sigma_frame = the root mean square over the centre-line points of the standard deviation of theta (v*)
+across the window's frames of all realizations; its effect on the paper's metric, ||sigma||_2 / n, for
+one frame and for the average (divided by sqrt(number of frames averaged), frames being independent
+for the copy-number noise: a molecule leaves its particle in about dx^2 / kappa = 0.013 time units).
+"""
+import argparse
+import glob
+import json
+import math
+import os
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tests", "data", "refs", "natural_convection"))
+from score_run import Case, average, measure, read_frame, score  # noqa: E402
+
+CACHE = "natural_convection_series.json"
+CACHE_VERSION = 1
+
+
+def run_dirs(paths):
+    out = []
+    for p in paths:
+        reals = sorted(glob.glob(os.path.join(p, "realization_*")))
+        dirs = reals if reals else [p]
+        for d in dirs:
+            if not glob.glob(os.path.join(d, "frames", "frame_*.csv")):
+                sys.exit("%s: no frames/frame_*.csv (a `sadr run` output with csv frames?)" % d)
+        out += dirs
+    return out
+
+
+def measure_run(run, case, h, dx, molecules):
+    """The measurements of every frame of one run, from the cache where it is current."""
+    key = {"version": CACHE_VERSION, "ra": case.ra, "h": h, "dx": dx, "molecules": molecules}
+    path = os.path.join(run, CACHE)
+    cached = {}
+    if os.path.exists(path):
+        with open(path) as f:
+            c = json.load(f)
+        if c.get("key") == key:
+            cached = c["frames"]
+    frames = sorted(glob.glob(os.path.join(run, "frames", "frame_*.csv")))
+    out, changed = [], False
+    for fpath in frames:
+        name = os.path.basename(fpath)
+        stamp = os.path.getmtime(fpath)
+        if name in cached and cached[name]["mtime"] == stamp:
+            m = {k: (np.array(v) if isinstance(v, list) else v) for k, v in cached[name]["m"].items()}
+        else:
+            fr = read_frame(fpath)
+            if molecules > 0:
+                fr["theta"] = fr["theta"] / molecules
+            m = measure(fr, case, h, dx)
+            cached[name] = {"mtime": stamp, "m": {k: (v.tolist() if isinstance(v, np.ndarray) else v)
+                                                  for k, v in m.items()}}
+            changed = True
+        out.append(m)
+    if changed:
+        with open(path + ".tmp", "w") as f:
+            json.dump({"key": key, "frames": cached}, f)
+        os.replace(path + ".tmp", path)
+    return out
+
+
+SERIES = (("kinetic_energy", lambda m: m["kinetic_energy"]),
+          ("Nu_near_cylinder", lambda m: float(np.mean(m["Q_near"]) / 2)),
+          ("Nu_enclosure", lambda m: float(np.mean(m["Q_enclosure"]) / 2)))
+
+
+def rates(times, ms, window):
+    """Relative rates of change |slope| / |mean| over the trailing window, per quantity and frame
+    (NaN where the window holds fewer than 3 frames or does not reach back W)."""
+    out = {}
+    for name, f in SERIES:
+        x = np.array([f(m) for m in ms])
+        r = np.full(len(times), np.nan)
+        for i, t in enumerate(times):
+            sel = (times >= t - window - 1e-9) & (times <= t + 1e-9)
+            if sel.sum() >= 3 and times[sel][0] <= t - window + 1e-9:
+                slope = np.polyfit(times[sel], x[sel], 1)[0]
+                r[i] = abs(slope) / max(abs(np.mean(x[sel])), 1e-300)
+        out[name] = r
+    return out
+
+
+def steady_time(times, rate, threshold):
+    """First frame time from which every later rate is below the threshold (None: never)."""
+    worst = np.max(np.vstack(list(rate.values())), axis=0)  # NaN where any quantity lacks a window
+    ok = np.isfinite(worst) & (worst < threshold)
+    for i in range(len(times)):
+        if np.isfinite(worst[i]) and ok[i:].all():
+            return float(times[i])
+    return None
+
+
+def analyse(runs, ra, h, dx, molecules, threshold, rate_window, window):
+    case = Case(ra)
+    per_run = []
+    for run in runs:
+        ms = measure_run(run, case, h, dx, molecules)
+        times = np.array([m["time"] for m in ms])
+        rate = rates(times, ms, rate_window)
+        per_run.append({"run": run, "ms": ms, "times": times, "rate": rate,
+                        "t_steady": steady_time(times, rate, threshold)})
+    result = {"Ra": case.ra, "runs": runs, "molecules": molecules, "threshold_per_time": threshold,
+              "rate_window": rate_window, "t_end": [float(r["times"][-1]) for r in per_run],
+              "t_steady": [r["t_steady"] for r in per_run],
+              "series": [{"time": r["times"].tolist(),
+                          **{n: [f(m) for m in r["ms"]] for n, f in SERIES},
+                          **{"rate_" + n: [None if not np.isfinite(v) else float(v) for v in r["rate"][n]]
+                             for n, _ in SERIES}} for r in per_run]}
+    if any(t is None for t in result["t_steady"]):
+        result["steady"] = False
+        bad = [r["run"] for r in per_run if r["t_steady"] is None]
+        worst = {r["run"]: {n: (float(v[np.isfinite(v)][-1]) if np.isfinite(v).any() else None)
+                            for n, v in r["rate"].items()} for r in per_run}
+        result["last_rates"] = worst
+        print("not steady by the criterion (rates < %g per unit time over %g): %s; last rates %s"
+              % (threshold, rate_window, ", ".join(bad), worst), file=sys.stderr)
+        return result
+    result["steady"] = True
+    t0 = max(result["t_steady"])
+    t1 = min(result["t_end"]) if window is None else t0 + window
+    if t1 > min(result["t_end"]) + 1e-9:
+        sys.exit("averaging window [%g, %g] ends after the shortest run (t = %g)" % (t0, t1, min(result["t_end"])))
+    chosen, per_real = [], []
+    for r in per_run:
+        sel = [m for m in r["ms"] if t0 - 1e-9 <= m["time"] <= t1 + 1e-9]
+        chosen += sel
+        per_real.append(score(average(sel), case))
+    result["window"] = [t0, t1]
+    result["frames_averaged"] = len(chosen)
+    result["realizations"] = len(per_run)
+    result["score"] = score(average(chosen), case)
+    result["score"]["max_density_variation"] = max(m["max_density_variation"] for m in chosen)
+    result["score"]["max_speed"] = max(m["max_speed"] for m in chosen)
+    for q in ("theta", "vstar"):
+        prof = np.array([m[q + "_dig"] for m in chosen])
+        sd = prof.std(axis=0, ddof=1) if len(chosen) > 1 else np.zeros(prof.shape[1])
+        n = prof.shape[1]
+        result[q + "_sigma_frame_rms"] = float(np.sqrt(np.mean(sd ** 2)))
+        result[q + "_noise_metric_one_frame"] = float(np.sqrt(np.sum(sd ** 2)) / n)
+        result[q + "_noise_metric_average"] = float(np.sqrt(np.sum(sd ** 2)) / n / math.sqrt(len(chosen)))
+        if len(per_real) > 1:
+            e = np.array([s[q + "_err_digitised"] for s in per_real])
+            result[q + "_err_digitised_realization_sd"] = float(e.std(ddof=1))
+    nu = np.array([float(np.mean(m["Q"]) / 2) for m in chosen])
+    result["Nu_half_sd_frames"] = float(nu.std(ddof=1)) if len(nu) > 1 else 0.0
+    result["profiles"] = {"x_ref": case.x_ref.tolist(),
+                          **{q + "_ref": average(chosen)[q + "_ref"].tolist() for q in ("theta", "vstar")}}
+    return result
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--ra", type=float, required=True)
+    ap.add_argument("--h", type=float, default=3.0 / 81.0, help="smoothing length (default 3/81)")
+    ap.add_argument("--dx", type=float, default=1.0 / 81.0)
+    ap.add_argument("--molecules", type=float, default=0.0,
+                    help="stochastic variant: molecules per particle at theta = 1 (theta = count / N)")
+    ap.add_argument("--threshold", type=float, default=1e-3, help="steady: |dX/dt| / |X| below this")
+    ap.add_argument("--rate-window", type=float, default=10.0, help="time window of the slope fit")
+    ap.add_argument("--window", type=float, default=None, help="averaging window length (default: to the end)")
+    ap.add_argument("--json")
+    args = ap.parse_args()
+    res = analyse(run_dirs(args.runs), args.ra, args.h, args.dx, args.molecules, args.threshold,
+                  args.rate_window, args.window)
+    for i, s in enumerate(res["series"]):
+        print("run %s" % res["runs"][i])
+        print("  %6s %12s %10s %10s %10s %10s %10s" % ("t", "E", "Nu_cyl", "Nu_encl", "rate_E", "rate_Nuc", "rate_Nue"))
+        for k, t in enumerate(s["time"]):
+            rr = ["%10.2e" % s["rate_" + n][k] if s["rate_" + n][k] is not None else "%10s" % "-" for n, _ in SERIES]
+            print("  %6.1f %12.5e %10.4f %10.4f %s" % (t, s["kinetic_energy"][k], s["Nu_near_cylinder"][k],
+                                                     s["Nu_enclosure"][k], " ".join(rr)))
+        print("  t_steady = %s" % res["t_steady"][i])
+    if res["steady"]:
+        print("window %g-%g, %d frames from %d realization(s)" % (res["window"][0], res["window"][1],
+                                                                  res["frames_averaged"], res["realizations"]))
+        for k, v in list(res["score"].items()) + [(k, v) for k, v in res.items() if "noise" in k or "sigma" in k
+                                                  or k.endswith("_sd") or k == "Nu_half_sd_frames"]:
+            print("  %-30s %s" % (k, ("%.4g" % v) if isinstance(v, float) else v))
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(res, f, indent=1)
+    sys.exit(0 if res["steady"] else 3)
+
+
+if __name__ == "__main__":
+    main()
