@@ -118,7 +118,7 @@ def steady_time(times, rate, threshold):
     return None
 
 
-def analyse(runs, ra, h, dx, molecules, threshold, rate_window, window):
+def analyse(runs, ra, h, dx, molecules, threshold, rate_window, window, start=None):
     case = Case(ra)
     per_run = []
     for run in runs:
@@ -134,17 +134,17 @@ def analyse(runs, ra, h, dx, molecules, threshold, rate_window, window):
                           **{n: [f(m) for m in r["ms"]] for n, f in SERIES},
                           **{"rate_" + n: [None if not np.isfinite(v) else float(v) for v in r["rate"][n]]
                              for n, _ in SERIES}} for r in per_run]}
-    if any(t is None for t in result["t_steady"]):
-        result["steady"] = False
+    result["last_rates"] = {r["run"]: {n: (float(v[np.isfinite(v)][-1]) if np.isfinite(v).any() else None)
+                                       for n, v in r["rate"].items()} for r in per_run}
+    result["steady"] = all(t is not None for t in result["t_steady"])
+    if not result["steady"]:
         bad = [r["run"] for r in per_run if r["t_steady"] is None]
-        worst = {r["run"]: {n: (float(v[np.isfinite(v)][-1]) if np.isfinite(v).any() else None)
-                            for n, v in r["rate"].items()} for r in per_run}
-        result["last_rates"] = worst
         print("not steady by the criterion (rates < %g per unit time over %g): %s; last rates %s"
-              % (threshold, rate_window, ", ".join(bad), worst), file=sys.stderr)
-        return result
-    result["steady"] = True
-    t0 = max(result["t_steady"])
+              % (threshold, rate_window, ", ".join(bad), result["last_rates"]), file=sys.stderr)
+        if start is None:
+            return result
+        print("averaging from t = %g anyway (--from): NOT a steady average" % start, file=sys.stderr)
+    t0 = max(result["t_steady"]) if start is None else start
     t1 = min(result["t_end"]) if window is None else t0 + window
     if t1 > min(result["t_end"]) + 1e-9:
         sys.exit("averaging window [%g, %g] ends after the shortest run (t = %g)" % (t0, t1, min(result["t_end"])))
@@ -187,10 +187,13 @@ def main():
     ap.add_argument("--threshold", type=float, default=1e-3, help="steady: |dX/dt| / |X| below this")
     ap.add_argument("--rate-window", type=float, default=10.0, help="time window of the slope fit")
     ap.add_argument("--window", type=float, default=None, help="averaging window length (default: to the end)")
+    ap.add_argument("--from", dest="start", type=float, default=None,
+                    help="average from this time on instead of the steady time (even when not steady: "
+                         "the result says steady = false)")
     ap.add_argument("--json")
     args = ap.parse_args()
     res = analyse(run_dirs(args.runs), args.ra, args.h, args.dx, args.molecules, args.threshold,
-                  args.rate_window, args.window)
+                  args.rate_window, args.window, args.start)
     for i, s in enumerate(res["series"]):
         print("run %s" % res["runs"][i])
         print("  %6s %12s %10s %10s %10s %10s %10s" % ("t", "E", "Nu_cyl", "Nu_encl", "rate_E", "rate_Nuc", "rate_Nue"))
@@ -199,7 +202,7 @@ def main():
             print("  %6.1f %12.5e %10.4f %10.4f %s" % (t, s["kinetic_energy"][k], s["Nu_near_cylinder"][k],
                                                      s["Nu_enclosure"][k], " ".join(rr)))
         print("  t_steady = %s" % res["t_steady"][i])
-    if res["steady"]:
+    if "score" in res:
         print("window %g-%g, %d frames from %d realization(s)" % (res["window"][0], res["window"][1],
                                                                   res["frames_averaged"], res["realizations"]))
         for k, v in list(res["score"].items()) + [(k, v) for k, v in res.items() if "noise" in k or "sigma" in k

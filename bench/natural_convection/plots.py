@@ -48,6 +48,8 @@ def profiles(analyses, out):
         p = a["profiles"]
         tag = "sadr (%s, t = %g-%g, %d frames)" % ("SSA N=%g" % a["molecules"] if a["molecules"] else "SDPD",
                                                    a["window"][0], a["window"][1], a["frames_averaged"])
+        if not a["steady"]:
+            tag += ", NOT steady"
         for k, q in enumerate(("theta", "vstar")):
             ax[k].plot(p["x_ref"], p[q + "_ref"], "-", color=c, lw=1.6, label="%s: %s" % (label(case.ra), tag))
             ax[k].plot(case.x_ref, case.ref[q], "--", color="k", lw=0.8,
@@ -151,8 +153,8 @@ def main():
     for p in args.analysis:
         with open(p) as f:
             analyses.append(json.load(f))
-        if not analyses[-1].get("steady"):
-            sys.exit("%s: the run was not steady by analyse.py's criterion; nothing averaged to plot" % p)
+        if "profiles" not in analyses[-1]:
+            sys.exit("%s: the run was not steady by analyse.py's criterion (and no --from); nothing averaged" % p)
     profiles(analyses, args.out)
     series(analyses, args.out)
     if args.frames:

@@ -29,8 +29,8 @@ def main():
     for p in sys.argv[1:]:
         with open(p) as f:
             a = json.load(f)
-        if not a.get("steady"):
-            sys.exit("%s: not steady by the criterion, no averaged row" % p)
+        if "score" not in a:
+            sys.exit("%s: not steady by the criterion and no --from: no averaged row" % p)
         rows.append(a)
     print("| Ra | variant | t steady | window (frames) | theta vs digitised | theta vs continuum "
           "| v* vs digitised | v* vs continuum | Nu_half (rel. to continuum) | max abs rho-1 |")
@@ -47,8 +47,10 @@ def main():
             s = a["score"]
             var = "SSA, N = %g, %d real." % (a["molecules"], a["realizations"]) if a["molecules"] else "SDPD"
             nu = s["Nu_half"] / s["Nu_half_reference"] - 1
-            print("| %s | %s | %g | %g-%g (%d) | **%.3e** | %.3e | **%.3f** | %.3f | %.3f (%+.1f %%) | %.2f %% |"
-                  % (e, var, max(a["t_steady"]), a["window"][0], a["window"][1], a["frames_averaged"],
+            ts = "%g" % max(a["t_steady"]) if a["steady"] else "not steady (rates %s)" % "/".join(
+                "%.0e" % v for r in a["last_rates"].values() for v in r.values())
+            print("| %s | %s | %s | %g-%g (%d) | **%.3e** | %.3e | **%.3f** | %.3f | %.3f (%+.1f %%) | %.2f %% |"
+                  % (e, var, ts, a["window"][0], a["window"][1], a["frames_averaged"],
                      s["theta_err_digitised"], s["theta_err_ref_at_digitised_x"], s["vstar_err_digitised"],
                      s["vstar_err_ref_at_digitised_x"], s["Nu_half"], 100 * nu, 100 * s["max_density_variation"]))
 

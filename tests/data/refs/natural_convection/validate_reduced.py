@@ -2,9 +2,13 @@
 """Reduced natural-convection validation (ctest -L validation: natural_convection_reduced).
 
 Runs the coarse deterministic scene (tests/data/scenes/natural_convection_ra1e4_coarse.yaml:
-41^2 lattice points in the enclosure, h = 3 dx, Ra = 1e4, SDPD-transported theta) with `sadr run`,
-scores its last frame against the continuum reference with score_run.py, and fails unless
+41^2 lattice points in the enclosure, h = 3 dx, Ra = 1e4, SDPD-transported theta, frames every 2)
+with `sadr run`, applies the steady-state criterion of bench/natural_convection/analyse.py (relative
+rates of change of the kinetic energy and of the Nusselt numbers below --threshold per unit time over
+a 10-unit window), averages the frames from the steady time to the end, scores the average against
+the continuum reference with score_run.py, and fails unless
 
+    the run is steady by the criterion, no later than --steady-by
     theta error (||.||_2 / n, continuum reference)   <= --theta-tol
     v* error   (||.||_2 / n, continuum reference)    <= --vstar-tol
     |Nu_half / Nu_half_reference - 1|                <= --nu-tol
@@ -24,7 +28,8 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", "..", "..", ".."))
-sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(ROOT, "bench", "natural_convection"))
+from analyse import analyse  # noqa: E402
 
 
 def main():
@@ -35,19 +40,25 @@ def main():
     ap.add_argument("--theta-tol", type=float, required=True)
     ap.add_argument("--vstar-tol", type=float, required=True)
     ap.add_argument("--nu-tol", type=float, required=True)
+    ap.add_argument("--threshold", type=float, default=1e-3)
+    ap.add_argument("--steady-by", type=float, required=True)
     args = ap.parse_args()
     with tempfile.TemporaryDirectory(prefix="sadr_nc_") as out:
         cmd = [args.sadr, "run", args.scene, "--fluid-threads", "1", "-o", os.path.join(out, "run")]
         print(" ".join(cmd), flush=True)
         subprocess.run(cmd, check=True)
-        frames = sorted(os.listdir(os.path.join(out, "run", "frames")))
-        last = os.path.join(out, "run", "frames", [f for f in frames if f.endswith(".csv")][-1])
-        subprocess.run([sys.executable, os.path.join(HERE, "score_run.py"), last, "--ra", "1e4",
-                              "--h", str(3.0 / 41.0), "--dx", str(1.0 / 41.0),
-                              "--json", os.path.join(out, "score.json")], check=True)
-        with open(os.path.join(out, "score.json")) as f:
-            s = json.load(f)
+        a = analyse([os.path.join(out, "run")], 1e4, 3.0 / 41.0, 1.0 / 41.0, 0.0, args.threshold, 10.0, None)
+    with open("natural_convection_reduced.json", "w") as f:
+        json.dump(a, f, indent=1)
+    print("t_steady %s (threshold %g per unit time); written natural_convection_reduced.json"
+          % (a["t_steady"][0], args.threshold))
+    if not a["steady"]:
+        print("FAILED: not steady by the criterion at t = %g: last rates %s" % (a["t_end"][0], a["last_rates"]))
+        sys.exit(1)
+    s = a["score"]
+    print("averaged over t = %g-%g (%d frames)" % (a["window"][0], a["window"][1], a["frames_averaged"]))
     checks = [
+        ("steady time", a["t_steady"][0], args.steady_by),
         ("theta error vs continuum", s["theta_err_ref"], args.theta_tol),
         ("v* error vs continuum", s["vstar_err_ref"], args.vstar_tol),
         ("|Nu_half / Nu_ref - 1|", abs(s["Nu_half"] / s["Nu_half_reference"] - 1), args.nu_tol),
