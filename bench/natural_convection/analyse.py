@@ -15,7 +15,9 @@ Steady-state criterion: for each quantity X of {kinetic energy E of the fluid, N
 (circles r = 0.15-0.2), Nu on the enclosure (squares 0.05-0.1 inside the walls)}, the relative rate of
 change |dX/dt| / |X| is the least-squares slope of X over the frames in [t - W, t] (W = --rate-window)
 divided by their mean. The run is steady from the first frame time t_s from which on every later
-frame's rates are all below --threshold (per unit time). Then the profiles and Nu are averaged over
+frame's rates are all below --threshold (per unit time). (A stochastic run's per-frame Nu is too
+noisy for this test: give --from the deterministic run's steady time, docs/natural-convection.md;
+the drift of each quantity over the window, with its standard error, is printed for every run.) Then the profiles and Nu are averaged over
 the frames in [t_s, t_s + T] (T = --window; default: to the end) and over the realizations, and scored
 against the continuum reference and the digitised profiles (score_run.score).
 
@@ -149,8 +151,17 @@ def analyse(runs, ra, h, dx, molecules, threshold, rate_window, window, start=No
     if t1 > min(result["t_end"]) + 1e-9:
         sys.exit("averaging window [%g, %g] ends after the shortest run (t = %g)" % (t0, t1, min(result["t_end"])))
     chosen, per_real = [], []
+    result["window_rates"] = {}
     for r in per_run:
         sel = [m for m in r["ms"] if t0 - 1e-9 <= m["time"] <= t1 + 1e-9]
+        if len(sel) >= 3:  # drift over the whole window: relative slope and its standard error
+            t = np.array([m["time"] for m in sel])
+            for name, f in SERIES:
+                x = np.array([f(m) for m in sel])
+                (slope, icpt), cov = np.polyfit(t, x, 1, cov=True) if len(sel) > 3 else (np.polyfit(t, x, 1), None)
+                se = math.sqrt(cov[0][0]) if cov is not None else float("nan")
+                result["window_rates"].setdefault(name, []).append(
+                    [float(slope / np.mean(x)), float(se / abs(np.mean(x)))])
         chosen += sel
         per_real.append(score(average(sel), case))
     result["window"] = [t0, t1]
@@ -176,6 +187,32 @@ def analyse(runs, ra, h, dx, molecules, threshold, rate_window, window, start=No
     return result
 
 
+def against(runs, det_run, ra, h, dx, molecules, start):
+    """Noise measured against the deterministic run of the same scene at equal times: for every
+    frame time t >= start that both have, the root mean square over the digitised centre-line points
+    of f_run(t) - f_det(t) (f = theta, v*), and that difference in the paper's metric. Needs no steady
+    state: the deterministic run is the mean-field solution the stochastic one fluctuates about."""
+    case = Case(ra)
+    det = {round(m["time"], 6): m for m in measure_run(det_run, case, h, dx, 0.0)}
+    out = {"det_run": det_run, "from": start, "times": []}
+    diffs = {"theta": [], "vstar": []}
+    for run in runs:
+        for m in measure_run(run, case, h, dx, molecules):
+            t = round(m["time"], 6)
+            if t < start - 1e-9 or t not in det:
+                continue
+            out["times"].append(t)
+            for q in diffs:
+                diffs[q].append(m[q + "_dig"] - det[t][q + "_dig"])
+    if not out["times"]:
+        sys.exit("no common frame times >= %g with %s" % (start, det_run))
+    for q, d in diffs.items():
+        d = np.array(d)
+        out[q + "_rms_diff"] = float(np.sqrt(np.mean(d ** 2)))
+        out[q + "_metric_diff_one_frame"] = float(np.mean([np.sqrt(np.sum(x ** 2)) / len(x) for x in d]))
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+")
@@ -190,6 +227,8 @@ def main():
     ap.add_argument("--from", dest="start", type=float, default=None,
                     help="average from this time on instead of the steady time (even when not steady: "
                          "the result says steady = false)")
+    ap.add_argument("--against", help="deterministic run of the same scene: also report the noise as the "
+                    "difference from it at equal frame times (from --from, default 0)")
     ap.add_argument("--json")
     args = ap.parse_args()
     res = analyse(run_dirs(args.runs), args.ra, args.h, args.dx, args.molecules, args.threshold,
@@ -208,6 +247,17 @@ def main():
         for k, v in list(res["score"].items()) + [(k, v) for k, v in res.items() if "noise" in k or "sigma" in k
                                                   or k.endswith("_sd") or k == "Nu_half_sd_frames"]:
             print("  %-30s %s" % (k, ("%.4g" % v) if isinstance(v, float) else v))
+        for name, v in res["window_rates"].items():
+            print("  drift over the window, %-16s %s per unit time" % (name, ", ".join(
+                "%+.2e +- %.1e" % tuple(x) for x in v)))
+    if args.against:
+        res["against"] = against(run_dirs(args.runs), args.against, args.ra, args.h, args.dx, args.molecules,
+                                 args.start or 0.0)
+        a = res["against"]
+        print("against %s at %d common frame times from t = %g:" % (args.against, len(a["times"]), a["from"]))
+        for q in ("theta", "vstar"):
+            print("  %s: rms difference %.4g, in the paper's metric per frame %.4g"
+                  % (q, a[q + "_rms_diff"], a[q + "_metric_diff_one_frame"]))
     if args.json:
         with open(args.json, "w") as f:
             json.dump(res, f, indent=1)

@@ -15,7 +15,10 @@ the continuum reference with score_run.py, and fails unless
     max |rho / rho_0 - 1| over the fluid             <= 0.01 (weak compressibility)
 
 The run is deterministic (no thermal noise, no SSA), so the measured figures are reproducible;
-the tolerances are the figures measured on 2026-12-01 times 1.3 (docs/natural-convection.md).
+the tolerances are the figures measured on 2026-12-01 times 1.3 (docs/natural-convection.md;
+measured: steady from t = 22 at --threshold 2e-3, averaged 22-40: theta 0.00243, v* 0.0868,
+|Nu/Nu_ref - 1| 0.084, max |rho - 1| 0.0079). The coarse run's kinetic energy fluctuates by about 1 %
+(particle disorder), so the test uses 2e-3 per unit time rather than the docs' 1e-3.
 
     /usr/bin/python3 validate_reduced.py --sadr build/ci/bin/sadr
 """
