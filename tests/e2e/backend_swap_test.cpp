@@ -6,7 +6,8 @@
 // time, for the test's run time) runs too. For both: exit 0, the plan names
 // the backend, the tracer count (8000 molecules, no reactions, no-flux walls)
 // is exactly conserved in every frame, and the body force drives the fluid and
-// the tracer-carrying particles downstream (+x).
+// the tracer-carrying particles downstream (+x). WallModel.*: the scene's fluid.wall_model
+// reaches the backend.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -67,6 +68,51 @@ TEST_P(BackendSwap, PoiseuilleTracerExampleRunsWithOnlyTheBackendNameChanged) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SdpdAndTdpd, BackendSwap, ::testing::Values("sdpd", "tdpd"));
+
+/// Mean vx of the fluid particles in the last csv frame of a run of the Poiseuille example to
+/// t = 2 with `fluid_extra` added to its fluid section.
+double mean_fluid_vx_at_t2(const std::string& name, const std::string& fluid_extra) {
+  const fs::path d = scratch("wall-" + name);
+  std::string text =
+      read_file(fs::path(SADR_SOURCE_DIR) / "examples" / "poiseuille_tracer_2d.yaml");
+  text = replace_once(text, "  backend: sdpd\n", "  backend: sdpd\n" + fluid_extra);
+  text = replace_once(text, "end: 10.0", "end: 2.0");
+  const fs::path scene = write_scene(d, text);
+  EXPECT_EQ(
+      run(bin("sadr") + " run " + scene.string() + " --no-progress -o " + (d / "out").string(),
+          d / "run.log"),
+      0)
+      << read_file(d / "run.log");
+  const auto all = frames(d / "out");
+  if (all.empty()) return 0.0;
+  const CsvFrame last = read_csv(all.back().extension() == ".csv" ? all.back() : all.end()[-2]);
+  double vx = 0, n = 0;
+  for (std::size_t i = 0; i < last.rows(); ++i) {
+    if (last.column("kind")[i] != 0) continue;
+    vx += last.column("vx")[i], n += 1;
+  }
+  if (!::testing::Test::HasFailure()) fs::remove_all(d);
+  return vx / n;
+}
+
+// fluid.wall_model: morris (with the wall planes at y = 0 and 1, half a spacing outside the
+// fluid rows) reaches the SDPD backend: Morris' extrapolated wall velocity puts the no-slip
+// planes at y = 0, 1, while stationary wall particles act at y = -0.032, 1.032 (the example's
+// header), so the channel is narrower and the start-up flow slower at the same body force.
+TEST(WallModel, MorrisWallsFromTheSceneSlowTheChannelFlow) {
+  const double stationary = mean_fluid_vx_at_t2("stationary", "");
+  const double morris =
+      mean_fluid_vx_at_t2("morris",
+                          "  wall_model: morris\n"
+                          "  wall_planes:\n"
+                          "    - {region: lower_wall, point: [0.0, 0.0], normal: [0.0, 1.0]}\n"
+                          "    - {region: upper_wall, point: [0.0, 1.0], normal: [0.0, -1.0]}\n");
+  std::printf("mean fluid vx at t = 2: stationary %.5f, morris %.5f (ratio %.4f)\n", stationary,
+              morris, morris / stationary);
+  EXPECT_GT(stationary, 0.01);
+  EXPECT_GT(morris, 0.01);
+  EXPECT_LT(morris, 0.99 * stationary);
+}
 
 }  // namespace
 }  // namespace sadr::e2e

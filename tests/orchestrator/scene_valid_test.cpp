@@ -85,6 +85,22 @@ TEST(SceneValid, ParameterNamesBecomeTheirIndex) {
   EXPECT_EQ(p.at("omega"), 2.0);
 }
 
+// fluid.wall_model: the backend's first wall model by default; morris with its planes (the
+// normal normalised).
+TEST(SceneValid, WallModelAndPlanes) {
+  EXPECT_EQ(parse_scene(test::kBaseScene, "scene.yaml").fluid.wall_model, "stationary");
+  const std::string text = test::replace_once(
+      test::kBaseScene, "  backend: static\n",
+      "  backend: sdpd\n  sound_speed: 1\n  shear_viscosity: 0.1\n  wall_model: morris\n"
+      "  wall_planes: [{region: left, point: [0.1], normal: [2]}]\n");
+  const auto fl = parse_scene(text, "scene.yaml").fluid;
+  EXPECT_EQ(fl.wall_model, "morris");
+  ASSERT_EQ(fl.wall_planes.size(), 1U);
+  EXPECT_EQ(fl.wall_planes[0].region, "left");
+  EXPECT_EQ(fl.wall_planes[0].point[0], 0.1);
+  EXPECT_EQ(fl.wall_planes[0].normal[0], 1.0);
+}
+
 TEST(SceneValid, OutputTimesDefaultToStartAndEnd) {
   const Scene s = parse_scene(kBaseScene, "scene.yaml");
   EXPECT_EQ(s.output.times, (std::vector<double>{0.0, 1.0}));

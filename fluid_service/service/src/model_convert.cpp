@@ -109,6 +109,22 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
 
   const auto regions = wire::regions_from_proto(in.regions(), n_particles, where);
   std::map<std::string, std::size_t, std::less<>> wall_region_index;
+  // Morris walls: the planar surface of each named region of wall particles (before the species'
+  // wall conditions, which may name the same regions).
+  for (int w = 0; w < in.wall_planes_size(); ++w) {
+    const auto& p = in.wall_planes(w);
+    const std::string here = where + ".wall_planes[" + std::to_string(w) + "]";
+    if (wall_region_index.count(p.region()) != 0) {
+      throw InvalidArgument(here + ".region = '" + p.region() + "' has a plane already");
+    }
+    WallRegion region;
+    region.name = p.region();
+    region.particles = wire::region_particles(regions, p.region(), here);
+    region.surface_point = vec3(p.point(), here + ".point", {0, 0, 0});
+    region.inward_normal = vec3(p.normal(), here + ".normal", {1, 0, 0});
+    m.wall_regions.push_back(std::move(region));
+    wall_region_index.emplace(p.region(), m.wall_regions.size() - 1);
+  }
   for (int s = 0; s < in.species_size(); ++s) {
     const auto& sp = in.species(s);
     SpeciesSpec spec;
@@ -175,6 +191,22 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
       throw InvalidArgument(where + ".options.density = '" + opt->second +
                             "' (allowed: continuity, summation)");
     }
+  }
+  const auto wm = in.options().find("wall_model");
+  if (wm != in.options().end()) {
+    if (wm->second == "stationary") {
+      m.wall_model = WallModel::kStationary;
+    } else if (wm->second == "morris") {
+      m.wall_model = WallModel::kMorrisExtrapolated;
+    } else {
+      throw InvalidArgument(where + ".options.wall_model = '" + wm->second +
+                            "' (allowed: stationary, morris)");
+    }
+  }
+  if (m.wall_model == WallModel::kMorrisExtrapolated && in.wall_planes_size() == 0) {
+    throw InvalidArgument(where +
+                          ".options.wall_model = 'morris' needs wall_planes (the wall "
+                          "surface of each region of wall particles)");
   }
   for (const auto& [key, value] : in.parameters()) {
     if (key == "density_diffusion") {

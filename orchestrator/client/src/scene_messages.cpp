@@ -115,6 +115,7 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
   m->set_max_time_step(f.max_time_step);
   m->set_force_time_step(f.force_time_step);
   (*m->mutable_options())["density"] = f.density_mode;
+  if (!f.wall_planes.empty()) (*m->mutable_options())["wall_model"] = f.wall_model;
   for (const auto& [k, v] : f.parameters) (*m->mutable_parameters())[k] = v;
   if (f.boussinesq) {
     m->set_buoyancy_species(f.boussinesq->species);
@@ -135,6 +136,15 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
   }
   for (const auto& r : scene.reactions) {
     if (!r.stochastic) to_proto(r, *m->add_reactions(), regions_used);
+  }
+  for (const auto& p : f.wall_planes) {
+    auto* w = m->add_wall_planes();
+    w->set_region(p.region);
+    for (int a = 0; a < 3; ++a) {
+      w->add_point(p.point[a]);
+      w->add_normal(p.normal[a]);
+    }
+    regions_used.insert(p.region);
   }
   add_regions(scene, regions_used, m->mutable_regions());
   wire::to_proto(scene.particles, *init.mutable_particles(), /*with_velocities=*/true);

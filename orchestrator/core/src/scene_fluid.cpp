@@ -14,10 +14,12 @@
 namespace sadr::orchestrator::detail {
 
 namespace {
-constexpr std::array<std::string_view, 15> kFluidKeys{
+constexpr std::array<std::string_view, 17> kFluidKeys{
     "backend",     "smoothing_length", "h_over_dx",       "kernel",     "reference_density",
     "sound_speed", "shear_viscosity",  "temperature",     "gravity",    "density_mode",
-    "boussinesq",  "max_time_step",    "force_time_step", "parameters", "open_boundary"};
+    "boussinesq",  "max_time_step",    "force_time_step", "parameters", "open_boundary",
+    "wall_model",  "wall_planes"};
+constexpr std::array<std::string_view, 3> kPlaneKeys{"region", "point", "normal"};
 constexpr std::array<std::string_view, 8> kOpenKeys{
     "axis", "inlet", "outlet", "profile", "mean_velocity", "max_velocity", "walls", "cross_axis"};
 constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
@@ -81,6 +83,48 @@ std::string backends_with(bool (*has)(const schema::Backend&)) {
   std::string s = names.size() == 1 ? "backend " : "backends ";
   for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
   return s;
+}
+
+/// fluid.wall_planes: [{region, point, normal}], only (and at least one) with wall_model morris.
+/// The region names are checked once the regions are read (check_wall_planes).
+void read_wall_planes(SceneContext& ctx, const Field& f) {
+  YamlReader& r = ctx.reader;
+  FluidSettings& fl = ctx.scene.fluid;
+  const Field planes = YamlReader::child(f, "wall_planes");
+  const bool morris = fl.wall_model == "morris";
+  if (!YamlReader::present(planes)) {
+    if (morris) {
+      r.error(planes,
+              "missing; wall_model morris needs the wall surface of each wall region: "
+              "[{region, point, normal}] (docs/scene-format.md)");
+    }
+    return;
+  }
+  if (!morris) {
+    r.error(planes, "only with wall_model: morris (the wall model here is " + fl.wall_model + ")");
+    return;
+  }
+  if (!r.expect_sequence(planes) || !ctx.dimension_ok) return;
+  const int d = ctx.scene.box.dimension;
+  for (std::size_t i = 0; i < planes.node.size(); ++i) {
+    const Field e = YamlReader::element(planes, i);
+    if (!r.expect_map(e, kPlaneKeys)) continue;
+    WallPlane p;
+    const auto region = r.string(e, "region", true);
+    const auto point = r.vector(e, "point", d, "length", true);
+    const auto normal = r.vector(e, "normal", d, "dimensionless", true);
+    if (!region || !point || !normal) continue;
+    const double len = std::sqrt((*normal)[0] * (*normal)[0] + (*normal)[1] * (*normal)[1] +
+                                 (*normal)[2] * (*normal)[2]);
+    if (!(len > 0)) {
+      r.error(YamlReader::child(e, "normal"), "must be non-zero (it points into the fluid)");
+      continue;
+    }
+    p.region = *region;
+    p.point = *point;
+    for (int a = 0; a < 3; ++a) p.normal[a] = (*normal)[a] / len;
+    fl.wall_planes.push_back(std::move(p));
+  }
 }
 
 /// fluid.parameters against the backend's parameter schema (name and range).
@@ -223,6 +267,19 @@ void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
 
 }  // namespace
 
+void check_wall_planes(SceneContext& ctx, const Field& root) {
+  const Field planes = YamlReader::child(YamlReader::child(root, "fluid"), "wall_planes");
+  const auto& list = ctx.scene.fluid.wall_planes;
+  for (std::size_t i = 0; i < list.size() && i < planes.node.size(); ++i) {
+    if (ctx.scene.find_region(list[i].region)) continue;
+    std::string known;
+    for (const auto& reg : ctx.scene.regions) known += (known.empty() ? "" : ", ") + reg.name;
+    ctx.reader.error(YamlReader::child(YamlReader::element(planes, i), "region"),
+                     "unknown region '" + list[i].region + "' (allowed: " +
+                         (known.empty() ? std::string("none defined") : known) + ")");
+  }
+}
+
 void check_open_boundary(SceneContext& ctx) {
   if (!ctx.open_boundary || !ctx.particles_ok) return;
   YamlReader& r = ctx.reader;
@@ -331,6 +388,12 @@ void read_fluid(SceneContext& ctx, const Field& root) {
   }
   fl.max_time_step = r.number_or(f, "max_time_step", 0.0, Bound::kNonNegative, "time");
   fl.force_time_step = r.boolean(f, "force_time_step", false).value_or(false);
+  if (spec) {  // the backend's wall models, its first the default
+    const auto models = views(spec->capabilities.wall_models);
+    fl.wall_model = spec->capabilities.wall_models.front();
+    if (auto w = r.choice(f, "wall_model", models, false, "wall model")) fl.wall_model = *w;
+  }
+  if (spec) read_wall_planes(ctx, f);
   read_parameters(ctx, f, spec);
   read_boussinesq(ctx, f);
   read_open_boundary(ctx, f, !spec || spec->capabilities.open_boundaries);

@@ -234,6 +234,7 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   read_regions(ctx, root);
   read_particles(ctx, root);
   check_open_boundary(ctx);
+  check_wall_planes(ctx, root);
   read_species(ctx, root);
   read_reactions(ctx, root);
   read_time_and_output(ctx, root);

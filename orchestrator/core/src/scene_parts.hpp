@@ -56,6 +56,8 @@ void read_particles(SceneContext& ctx, const Field& root);
 void read_fluid(SceneContext& ctx, const Field& root);
 /// fluid.open_boundary against h and the particles (after read_particles).
 void check_open_boundary(SceneContext& ctx);
+/// fluid.wall_planes name regions of the scene (after read_regions).
+void check_wall_planes(SceneContext& ctx, const Field& root);
 void read_species(SceneContext& ctx, const Field& root);
 void read_reactions(SceneContext& ctx, const Field& root);
 void read_time_and_output(SceneContext& ctx, const Field& root);

@@ -87,6 +87,13 @@ struct Boussinesq {
   std::array<double, 3> direction{0.0, 1.0, 0.0};  ///< unit vector
 };
 
+/// A planar wall surface of a region of wall particles (fluid.wall_planes; Morris walls).
+struct WallPlane {
+  std::string region;
+  std::array<double, 3> point{};   ///< a point on the surface [length]
+  std::array<double, 3> normal{};  ///< unit normal from the wall into the fluid
+};
+
 struct FluidSettings {
   std::string backend = "sdpd";   ///< "sdpd", "static" or "tdpd"
   double smoothing_length = 0.0;  ///< h [length]
@@ -101,6 +108,8 @@ struct FluidSettings {
   double max_time_step = 0.0;  ///< upper bound on the fluid sub-step [time]; 0 = none
   bool force_time_step = false;
   std::map<std::string, double> parameters;  ///< backend-specific numbers
+  std::string wall_model = "stationary";     ///< one of the backend's wall models
+  std::vector<WallPlane> wall_planes;        ///< wall_model "morris": one per wall region
 };
 
 enum class Splitting { kLie, kStrang };
