@@ -34,14 +34,17 @@ wait $p1 && wait $p2
 run ra1e6 examples/natural_convection_ra1e6.yaml & p1=$!
 run st4_n10 examples/natural_convection_ra1e4_stochastic.yaml & p2=$!
 wait $p1 && wait $p2
+# Ra = 1e6 drifts until about t = 54: continue it to t = 70 from its checkpoint
+[ -f "$OUT/ra1e6/frames/frame_000035.csv" ] ||
+  SADR_FLUID_THREADS=1 "$BIN/sadr" resume "$OUT/ra1e6/checkpoint/checkpoint.json" -q --stop-at 70
 # shellcheck disable=SC2046
 run st4_n100 examples/natural_convection_ra1e4_stochastic.yaml $(stochastic 100)
 
 A="$PY $HERE/analyse.py"
 $A "$OUT/ra1e4" --ra 1e4 --json "$OUT/a4.json" > "$OUT/a4.txt" || true
 $A "$OUT/ra1e5" --ra 1e5 --json "$OUT/a5.json" > "$OUT/a5.txt" || true
-# Ra = 1e6 is not steady by the criterion at t = 50 (docs): averaged over 42-52 and marked so
-$A "$OUT/ra1e6" --ra 1e6 --from 42 --json "$OUT/a6.json" > "$OUT/a6.txt" || true
+# Ra = 1e6 is not steady by the 1e-3 criterion (Nu on the enclosure fluctuates; docs): averaged 54-70
+$A "$OUT/ra1e6" --ra 1e6 --from 54 --json "$OUT/a6.json" > "$OUT/a6.txt" || true
 # stochastic: the criterion cannot see through the per-frame noise; the deterministic run's t = 26 (docs)
 $A "$OUT/st4_n10" --ra 1e4 --molecules 10 --from 26 --against "$OUT/ra1e4" --json "$OUT/s10.json" > "$OUT/s10.txt" || true
 $A "$OUT/st4_n100" --ra 1e4 --molecules 100 --from 26 --against "$OUT/ra1e4" --json "$OUT/s100.json" > "$OUT/s100.txt" || true
