@@ -36,7 +36,7 @@ void restore_and_step(const Init& init, const common::v1::Snapshot& format, std:
   req.Clear();
   auto* adv = req.mutable_advance();
   adv->set_run_id("fuzz");
-  adv->set_step_index(snap->step_index() + 1);
+  adv->set_step_index(format.step_index() + 1);
   if constexpr (requires { adv->set_time_step(0.05); }) {
     adv->set_time_step(0.05);
   } else {
