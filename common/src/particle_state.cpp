@@ -31,6 +31,13 @@ void Box::validate() const {
       throw InvalidArgument("box axis " + std::to_string(a) + ": hi (" + format_value(hi[a]) +
                             ") must be finite and greater than lo (" + format_value(lo[a]) + ")");
     }
+    // Both ends finite, the length not (-1e308 to 1e308): positions became NaN in the
+    // fluid's cell binning (found by fuzz_fluid_requests).
+    if (!std::isfinite(hi[a] - lo[a])) {
+      throw InvalidArgument("box axis " + std::to_string(a) +
+                            ": length hi - lo = " + format_value(hi[a]) + " - " +
+                            format_value(lo[a]) + " overflows (must be finite)");
+    }
   }
 }
 
@@ -81,6 +88,13 @@ void ParticleState::validate() const {
       throw InvalidArgument("particle " + std::to_string(i) + ": volume mass / density = " +
                             format_value(masses[i]) + " / " + format_value(densities[i]) + " = " +
                             format_value(volume) + " (must be a finite, normal number > 0)");
+    }
+    for (std::size_t a = 0; a < 3 && !velocities.empty(); ++a) {
+      // (a NaN velocity made every position NaN after one step: fuzz_fluid_requests)
+      if (!std::isfinite(velocities[3 * i + a])) {
+        throw InvalidArgument("particle " + std::to_string(i) + ": velocity[" + std::to_string(a) +
+                              "] = " + format_value(velocities[3 * i + a]) + " (must be finite)");
+      }
     }
     for (int a = 0; a < 3; ++a) {
       if (!std::isfinite(positions[3 * i + a])) {

@@ -144,7 +144,13 @@ void write_blob_header(BlobWriter& w, std::string_view backend, std::uint32_t ve
 std::uint32_t read_blob_header(BlobReader& r, std::string_view backend) {
   auto expect_backend = [&](const std::string& written) {
     if (written != backend) {
-      throw InvalidArgument("restore: blob was written by backend '" + written + "', not '" +
+      // The name comes from the blob: echo at most 40 printable ASCII characters (raw
+      // bytes made the reply's Status invalid UTF-8, so the client could not parse the
+      // reply and lost the message; found by fuzz_fluid_restore).
+      std::string shown;
+      for (char ch : written.substr(0, 40)) shown += (ch >= 0x20 && ch < 0x7f) ? ch : '?';
+      if (written.size() > 40) shown += "... (" + std::to_string(written.size()) + " bytes)";
+      throw InvalidArgument("restore: blob was written by backend '" + shown + "', not '" +
                             std::string(backend) + "'");
     }
   };

@@ -45,10 +45,10 @@ void CellListBuilder::build(std::span<const double> positions, NeighborList& out
   for (std::size_t i = 0; i < n; ++i) {
     std::array<int, 3> c{0, 0, 0};
     for (int a = 0; a < dim; ++a) {
-      // Clamped as a double: a position far outside the box (1e300) would overflow the
-      // int conversion (undefined behaviour; found by fuzz_fluid_requests).
+      // Clamped as a double: a position far outside the box (1e300) or NaN would make
+      // the int conversion undefined (found by fuzz_fluid_requests).
       const double k = std::floor((positions[3 * i + a] - box.lo[a]) * inv_cell_[a]);
-      c[a] = static_cast<int>(std::clamp(k, 0.0, static_cast<double>(ncell_[a] - 1)));
+      c[a] = k >= 0 ? static_cast<int>(std::min(k, static_cast<double>(ncell_[a] - 1))) : 0;
     }
     coord[i] = c;
     cell_of[i] = static_cast<std::uint32_t>(
