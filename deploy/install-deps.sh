@@ -15,6 +15,7 @@ PACKAGES=(
   libbenchmark-dev                          # micro benchmarks
   libcli11-dev                              # command-line parsing
   libyaml-cpp-dev                           # scene files
+  libmuparser-dev                           # expression rate laws (common/rate_law.hpp)
   nlohmann-json3-dev                        # JSON manifests and benchmark output
   python3 python3-numpy python3-scipy       # reference scripts for validation tests
   procps                                    # pgrep, used by the e2e tests to find service processes

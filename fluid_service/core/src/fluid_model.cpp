@@ -116,6 +116,22 @@ void FluidModel::validate() const {
     };
     check_side(re.reactants, "reactants");
     check_side(re.products, "products");
+    if (re.law) {
+      std::vector<std::string> names;
+      for (const auto& sp : species) names.push_back(sp.name);
+      try {
+        const rate_law::RateLaw law(*re.law, names, false);
+        for (const int s : law.species()) {
+          if (!species[s].deterministic) {
+            p.add_text(f + ".law", "reads the stochastic species '" + species[s].name +
+                                       "'; a fluid reaction's law reads deterministic species "
+                                       "only (hybrid reactions are not built)");
+          }
+        }
+      } catch (const InvalidArgument& e) {
+        p.add_text(f + ".law", e.what());
+      }
+    }
   }
   if (boussinesq.species >= ns || boussinesq.species < -1) {
     p.add("boussinesq.species", boussinesq.species,

@@ -8,6 +8,7 @@
 
 #include "sadr/common/mass_action.hpp"
 #include "sadr/common/status.hpp"
+#include "sadr/fluid/parallel.hpp"
 
 namespace sadr::fluid {
 
@@ -60,10 +61,19 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
     }
   }
   reactions_.clear();
+  std::vector<rate_law::RateLaw> laws;
+  std::vector<std::string> names;
+  for (const auto& sp : model.species) names.push_back(sp.name);
+  std::size_t widest = 0;
   for (std::size_t r = 0; r < model.reactions.size(); ++r) {
     const auto& re = model.reactions[r];
     CompiledReaction cr;
     cr.rate = re.rate;
+    if (re.law) {
+      cr.law = static_cast<int>(laws.size());
+      laws.emplace_back(*re.law, names, false);
+      widest = std::max(widest, laws.back().species().size());
+    }
     // Sites: kinds (default fluid only) intersected with the optional particle list.
     cr.kind_ok = {1, 0, 0, 0};
     if (!re.kinds.empty()) {
@@ -109,6 +119,9 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
     }
     reactions_.push_back(std::move(cr));
   }
+  const auto threads = static_cast<std::size_t>(std::max(1, max_threads()));
+  laws_.assign(threads, laws);
+  scratch_.assign(threads, std::vector<double>(widest, 0.0));
 }
 
 void SpeciesTransport::apply_dirichlet(std::vector<std::vector<double>>& c) const {
@@ -121,11 +134,39 @@ void SpeciesTransport::apply_dirichlet(std::vector<std::vector<double>>& c) cons
 
 double SpeciesTransport::velocity(const CompiledReaction& r, std::size_t i,
                                   const std::vector<std::vector<double>>& c) const {
+  if (r.law >= 0) {
+    const auto thread = static_cast<std::size_t>(thread_index());
+    if (thread >= laws_.size()) {
+      throw Error(StatusCode::kInternal, "SpeciesTransport: thread " + std::to_string(thread) +
+                                             " beyond the " + std::to_string(laws_.size()) +
+                                             " set up");
+    }
+    const rate_law::RateLaw& law = laws_[thread][r.law];
+    double* x = scratch_[thread].data();
+    const std::vector<int>& sp = law.species();
+    for (std::size_t k = 0; k < sp.size(); ++k) x[k] = c[sp[k]][i];
+    return law.density(x, 0.0);
+  }
   double v = r.rate;
   for (const auto& t : r.reactants) {
     v *= mass_action::concentration_term(c[t.species][i], t.nu, t.inv_factorial);
   }
   return v;
+}
+
+double SpeciesTransport::law_rate_scale(const CompiledReaction& r, std::size_t i,
+                                        const std::vector<std::vector<double>>& c) const {
+  // sum_s |dv/dC_s| times the total |stoichiometric change|: a Gershgorin bound on
+  // this reaction's Jacobian (one-sided differences; serial, thread 0's copy).
+  const rate_law::RateLaw& law = laws_[0][r.law];
+  double* x = scratch_[0].data();
+  const std::vector<int>& sp = law.species();
+  for (std::size_t k = 0; k < sp.size(); ++k) x[k] = c[sp[k]][i];
+  double grad = 0;
+  for (std::size_t k = 0; k < sp.size(); ++k) grad += std::fabs(law.derivative(x, 0.0, k));
+  double change = 0;
+  for (const auto& [s, d] : r.delta) change += std::abs(d);
+  return grad * change;
 }
 
 void SpeciesTransport::update_sites(std::span<const ParticleKind> kinds) {
@@ -165,6 +206,10 @@ double SpeciesTransport::reaction_rate_scale(const std::vector<std::vector<doubl
     double sum = 0;
     for (const auto& r : reactions_) {
       if (!r.fires[i]) continue;
+      if (r.law >= 0) {
+        sum += law_rate_scale(r, i, c);
+        continue;
+      }
       for (const auto& t : r.reactants) {
         // dv/dC_s = rate * nu C_s^(nu-1)/nu! * prod_{other reactants}
         double d = r.rate * t.nu * t.inv_factorial;

@@ -178,6 +178,7 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     spec.reactants = stoichiometry(rx.reactants(), m, here + ".reactants");
     spec.products = stoichiometry(rx.products(), m, here + ".products");
     spec.rate = rx.rate();
+    if (rx.has_law()) spec.law = wire::from_proto(rx.law(), here + ".law");
     m.reactions.push_back(std::move(spec));
   }
 

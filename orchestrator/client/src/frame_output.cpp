@@ -26,6 +26,42 @@ FrameOutput::FrameOutput(const Scene& scene, const std::filesystem::path& output
       manifest_(manifest),
       pvd_(output_dir / (scene.name.empty() ? "frames.pvd" : scene.name + ".pvd")) {
   ensure_directory(output_dir / "frames");
+  std::vector<std::string> names;
+  for (const auto& sp : scene.species) names.push_back(sp.name);
+  for (const auto& name : scene.output.species) {
+    const AssignedSpecies* a = scene.find_assigned(name);
+    if (!a) continue;
+    rate_law::Definition d;
+    d.type = rate_law::Type::kExpression;
+    d.expression = a->expanded;
+    d.parameters = scene.parameters;
+    d.origin = a->origin;
+    assigned_.emplace_back(name, rate_law::RateLaw(d, names, false));
+    for (const int s : assigned_.back().second.species()) inputs_.insert(names[s]);
+  }
+}
+
+void FrameOutput::evaluate_assigned(std::map<std::string, std::vector<double>>& values,
+                                    const ParticleState& state) {
+  const std::size_t n = state.size();
+  for (auto& [name, law] : assigned_) {
+    const std::vector<int>& sp = law.species();
+    std::vector<const std::vector<double>*> in;
+    std::vector<bool> counts;
+    for (const int s : sp) {
+      const Species& species = scene_.species[s];
+      in.push_back(&values.at(species.name));
+      counts.push_back(species.stochastic);
+    }
+    std::vector<double> c(sp.size()), out(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < sp.size(); ++k) {
+        c[k] = (*in[k])[i] / (counts[k] ? state.volume(i) : 1.0);
+      }
+      out[i] = law.density(c.data(), 0.0);
+    }
+    values[name] = std::move(out);
+  }
 }
 
 std::vector<SpeciesColumn> FrameOutput::write(std::size_t index, double t, FluidService* fluid,
@@ -38,6 +74,13 @@ std::vector<SpeciesColumn> FrameOutput::write(std::size_t index, double t, Fluid
       const Species* s = scene_.find_species(name);
       if (s && !s->stochastic) deterministic.push_back(name);
     }
+    for (const auto& name : inputs_) {  // read by assigned species, not written
+      const Species* s = scene_.find_species(name);
+      if (!s->stochastic &&
+          std::find(deterministic.begin(), deterministic.end(), name) == deterministic.end()) {
+        deterministic.push_back(name);
+      }
+    }
     FluidFrame f = fluid->frame(deterministic);
     state = std::move(f.particles);
     for (auto& [name, c] : f.concentrations) values[name] = std::move(c);
@@ -48,6 +91,13 @@ std::vector<SpeciesColumn> FrameOutput::write(std::size_t index, double t, Fluid
       const Species* s = scene_.find_species(name);
       if (s && s->stochastic) stochastic.push_back(name);
     }
+    for (const auto& name : inputs_) {
+      const Species* s = scene_.find_species(name);
+      if (s->stochastic &&
+          std::find(stochastic.begin(), stochastic.end(), name) == stochastic.end()) {
+        stochastic.push_back(name);
+      }
+    }
     if (!stochastic.empty()) {
       const SpeciesCounts counts = ssa->counts(stochastic);
       for (std::size_t k = 0; k < counts.names.size(); ++k) {
@@ -56,6 +106,7 @@ std::vector<SpeciesColumn> FrameOutput::write(std::size_t index, double t, Fluid
       }
     }
   }
+  if (!assigned_.empty()) evaluate_assigned(values, state);
   std::vector<SpeciesColumn> columns;
   for (const auto& name : scene_.output.species) {
     auto it = values.find(name);

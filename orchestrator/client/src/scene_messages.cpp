@@ -57,6 +57,7 @@ void to_proto(const Reaction& in, common::v1::Reaction& out, std::set<std::strin
     p->set_count(e.count);
   }
   out.set_rate(in.rate);
+  if (in.law) wire::to_proto(*in.law, *out.mutable_law());
   for (auto k : in.kinds) out.add_kinds(static_cast<std::uint32_t>(k));
   for (const auto& r : in.regions) {
     out.add_regions(r);

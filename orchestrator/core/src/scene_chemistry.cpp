@@ -21,8 +21,8 @@ constexpr std::array<std::string_view, 5> kInitialKeys{"region", "count", "conce
 constexpr std::array<std::string_view, 4> kBoundaryKeys{"region", "condition", "value", "count"};
 constexpr std::array<std::string_view, 5> kConditions{"dirichlet", "neumann", "none", "free",
                                                       "inflow"};
-constexpr std::array<std::string_view, 8> kReactionKeys{
-    "name", "equation", "reactants", "products", "rate", "reverse_rate", "regions", "kinds"};
+constexpr std::array<std::string_view, 9> kReactionKeys{
+    "name", "equation", "reactants", "products", "rate", "reverse_rate", "regions", "kinds", "law"};
 constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
 
 /// The largest stochastic copy number a scene accepts: kMaxExactCount (2^53,
@@ -328,7 +328,7 @@ std::vector<StoichiometryEntry> read_stoichiometry(SceneContext& ctx, const Fiel
 /// Checks the species of a reaction; returns whether they are stochastic
 /// (nullopt if unknown or mixed; reported).
 std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where,
-                                           const Reaction& rx) {
+                                           const Reaction& rx, bool has_law) {
   std::vector<std::string_view> known;
   for (const auto& sp : ctx.scene.species) known.push_back(sp.name);
   std::optional<bool> stochastic;
@@ -358,7 +358,7 @@ std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where
       }
     }
   }
-  if (rx.order() > 2) {
+  if (rx.order() > 2 && !has_law) {
     ctx.reader.error(where, "order " + std::to_string(rx.order()) +
                                 " is not allowed; allowed: mass-action order 0, 1 or 2 "
                                 "(split higher-order reactions into elementary steps)");
@@ -377,7 +377,8 @@ void read_species(SceneContext& ctx, const Field& root) {
     std::set<std::string> names;
     for (std::size_t k = 0; k < list.node.size(); ++k) {
       const Field f = YamlReader::element(list, k);
-      if (!r.expect_map(f, kSpeciesKeys)) continue;
+      const bool assigned = f.node.IsMap() && YamlReader::present(YamlReader::child(f, "assigned"));
+      if (!assigned && !r.expect_map(f, kSpeciesKeys)) continue;
       Species sp;
       sp.name = r.string(f, "name", true).value_or("");
       const Field nf = YamlReader::child(f, "name");
@@ -387,6 +388,10 @@ void read_species(SceneContext& ctx, const Field& root) {
       } else if (!sp.name.empty() && !names.insert(sp.name).second) {
         r.error(nf, "species name '" + sp.name + "' is already used; species names must be unique");
       }
+      if (assigned) {
+        read_assigned(ctx, f);
+        continue;
+      }
       sp.stochastic = r.boolean(f, "stochastic", false).value_or(true);
       sp.diffusivity =
           r.number(f, "diffusivity", Bound::kNonNegative, "length^2/time", true).value_or(0.0);
@@ -395,6 +400,7 @@ void read_species(SceneContext& ctx, const Field& root) {
       ctx.scene.species.push_back(std::move(sp));
     }
   }
+  check_assigned(ctx, root);
   for (const auto& c : ctx.extra_columns) {
     if (c.used) continue;
     r.error(*ctx.particle_file_field,
@@ -454,7 +460,17 @@ void read_reactions(SceneContext& ctx, const Field& root) {
     const std::string unit = rx.order() == 0   ? "molecules/(length^d time)"
                              : rx.order() == 1 ? "1/time"
                                                : "length^d/(molecules time)";
-    rx.rate = r.number(f, "rate", Bound::kNonNegative, unit, true).value_or(0.0);
+    const bool has_law = YamlReader::present(YamlReader::child(f, "law"));
+    if (has_law && YamlReader::present(YamlReader::child(f, "rate"))) {
+      r.error(YamlReader::child(f, "rate"),
+              "give either 'rate' (mass action) or 'law' (another rate law), not both");
+    } else if (has_law && reversible) {
+      r.error(eqf,
+              "a reaction with a 'law' is irreversible ('->'); write the reverse "
+              "reaction as its own entry");
+    } else if (!has_law) {
+      rx.rate = r.number(f, "rate", Bound::kNonNegative, unit, true).value_or(0.0);
+    }
     const Field rev = YamlReader::child(f, "reverse_rate");
     std::optional<double> reverse;
     if (reversible) {
@@ -474,8 +490,10 @@ void read_reactions(SceneContext& ctx, const Field& root) {
         }
       }
     }
-    const auto stochastic = check_reaction_species(ctx, eqf.node.IsDefined() ? eqf : f, rx);
+    const auto stochastic =
+        check_reaction_species(ctx, eqf.node.IsDefined() ? eqf : f, rx, has_law);
     if (stochastic) rx.stochastic = *stochastic;
+    if (stochastic && has_law) read_law(ctx, f, rx);
     Reaction back = rx;
     back.name = rx.name + "_reverse";
     std::swap(back.reactants, back.products);

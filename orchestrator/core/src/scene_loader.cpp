@@ -73,9 +73,9 @@ std::string scene_name_from_file(const std::filesystem::path& source) {
 
 namespace {
 
-constexpr std::array<std::string_view, 13> kTopKeys{
-    "name",    "description", "dimension", "box",    "regions", "particles", "fluid",
-    "species", "reactions",   "time",      "output", "seed",    "ssa"};
+constexpr std::array<std::string_view, 14> kTopKeys{
+    "name",       "description", "dimension", "box",  "regions", "particles", "fluid",
+    "parameters", "species",     "reactions", "time", "output",  "seed",      "ssa"};
 
 void read_box(SceneContext& ctx, const Field& root) {
   YamlReader& r = ctx.reader;
@@ -235,7 +235,9 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   read_particles(ctx, root);
   check_open_boundary(ctx);
   check_wall_planes(ctx, root);
+  read_parameters(ctx, root);
   read_species(ctx, root);
+  check_parameter_names(ctx, root);
   read_reactions(ctx, root);
   read_time_and_output(ctx, root);
   read_ssa(ctx, root);
@@ -301,6 +303,13 @@ unsigned Reaction::order() const {
 const Species* Scene::find_species(std::string_view n) const {
   for (const auto& sp : species) {
     if (sp.name == n) return &sp;
+  }
+  return nullptr;
+}
+
+const AssignedSpecies* Scene::find_assigned(std::string_view n) const {
+  for (const auto& a : assigned) {
+    if (a.name == n) return &a;
   }
   return nullptr;
 }

@@ -60,6 +60,17 @@ void check_open_boundary(SceneContext& ctx);
 void check_wall_planes(SceneContext& ctx, const Field& root);
 void read_species(SceneContext& ctx, const Field& root);
 void read_reactions(SceneContext& ctx, const Field& root);
+/// Top-level "parameters" (scene_laws.cpp): named constants of rate laws.
+void read_parameters(SceneContext& ctx, const Field& root);
+/// Reports parameters that have the name of a species (after read_species).
+void check_parameter_names(SceneContext& ctx, const Field& root);
+/// The reaction's "law" into rx.law, compiled and sampled at admissible states;
+/// false if absent. Needs rx's species checked and rx.stochastic set.
+bool read_law(SceneContext& ctx, const Field& reaction, Reaction& rx);
+/// A species entry with `assigned` into scene.assigned (checked by check_assigned).
+void read_assigned(SceneContext& ctx, const Field& entry);
+/// Expands and compiles every assigned species' expression (after read_species).
+void check_assigned(SceneContext& ctx, const Field& root);
 void read_time_and_output(SceneContext& ctx, const Field& root);
 
 /// Parses "fluid", "wall", "inlet", "outlet" (nullopt otherwise).

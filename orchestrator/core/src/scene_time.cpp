@@ -153,8 +153,9 @@ void read_time_and_output(SceneContext& ctx, const Field& root) {
     if (auto names = r.string_list(out, "species", false)) {
       std::vector<std::string_view> known;
       for (const auto& sp : s.species) known.push_back(sp.name);
+      for (const auto& a : s.assigned) known.push_back(a.name);
       for (const auto& name : *names) {
-        if (s.find_species(name)) {
+        if (s.find_species(name) || s.find_assigned(name)) {
           s.output.species.push_back(name);
           continue;
         }
@@ -164,6 +165,7 @@ void read_time_and_output(SceneContext& ctx, const Field& root) {
       }
     } else {
       for (const auto& sp : s.species) s.output.species.push_back(sp.name);
+      for (const auto& a : s.assigned) s.output.species.push_back(a.name);
     }
     s.output.checkpoint_every =
         r.number_or(out, "checkpoint_every", 0.0, Bound::kNonNegative, "time");
@@ -173,6 +175,7 @@ void read_time_and_output(SceneContext& ctx, const Field& root) {
     read_observables(ctx, out);
   } else {
     for (const auto& sp : s.species) s.output.species.push_back(sp.name);
+    for (const auto& a : s.assigned) s.output.species.push_back(a.name);
   }
   if (!time_ok) return;
   if (include_initial) times.push_back(0.0);

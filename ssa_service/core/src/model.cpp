@@ -75,7 +75,13 @@ void Model::validate() const {
         }
       }
     }
-    if (order > 2) {
+    if (rx.law) {
+      try {
+        (void)rate_law::RateLaw(*rx.law, species_names(), false);
+      } catch (const InvalidArgument& e) {
+        issues.push_back(f + ".law: " + e.what());
+      }
+    } else if (order > 2) {
       issues.push_back(f + ": total order = " + std::to_string(order) + " (allowed: 0, 1, 2)");
     }
     for (std::size_t k = 0; k < rx.products.size(); ++k) {
@@ -170,6 +176,12 @@ int Model::species_index(std::string_view name) const {
                         {{"field", "species"}, {"value", std::string(name)}});
 }
 
+std::vector<std::string> Model::species_names() const {
+  std::vector<std::string> out;
+  for (const auto& s : species) out.push_back(s.name);
+  return out;
+}
+
 namespace {
 struct Fnv {
   std::uint64_t h = 1469598103934665603ULL;
@@ -203,6 +215,10 @@ std::uint64_t Model::fingerprint() const {
     for (const auto& [s, n] : r.products) f.pod(s), f.pod(n);
     f.pod(-1);
     f.pod(r.rate);
+    if (r.law) {  // absent without a law: old fingerprints stay valid
+      f.str(r.law->text());
+      for (const auto& [name, value] : r.law->parameters) f.str(name), f.pod(value);
+    }
     for (auto k : r.kinds) f.pod(k);
     f.pod(-1);
     for (auto v : r.voxels) f.pod(v);

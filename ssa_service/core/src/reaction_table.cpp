@@ -3,7 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <string>
+
+#include "sadr/common/status.hpp"
 
 namespace sadr::ssa {
 
@@ -13,9 +17,11 @@ CompiledReaction compile(const Reaction& rx) {
   CompiledReaction c;
   std::map<int, int> net;
   for (const auto& [s, nu] : rx.reactants) {
-    c.species[c.n_reactants] = s;
-    c.nu[c.n_reactants] = nu;
-    ++c.n_reactants;
+    if (!rx.law) {  // the mass-action form (at most 2 reactants, Model::validate)
+      c.species[c.n_reactants] = s;
+      c.nu[c.n_reactants] = nu;
+      ++c.n_reactants;
+    }
     c.order += nu;
     net[s] -= nu;
   }
@@ -31,7 +37,18 @@ CompiledReaction compile(const Reaction& rx) {
 ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& graph) {
   ReactionTable t;
   const std::size_t n = graph.size();
-  for (const Reaction& rx : model.reactions) t.reactions_.push_back(compile(rx));
+  t.species_ = model.species_names();
+  std::size_t widest = 0;
+  for (const Reaction& rx : model.reactions) {
+    t.reactions_.push_back(compile(rx));
+    t.names_.push_back(rx.name);
+    if (rx.law) {
+      t.reactions_.back().law = static_cast<int>(t.laws_.size());
+      t.laws_.push_back({rate_law::RateLaw(*rx.law, t.species_, false), rx.reactants});
+      widest = std::max(widest, t.laws_.back().law.species().size());
+    }
+  }
+  t.scratch_.assign(widest, 0.0);
   for (const NeumannSource& src : model.neumann) {
     CompiledReaction c;
     c.change.emplace_back(src.species, 1);
@@ -43,7 +60,7 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
   std::vector<std::uint8_t> in_region(n);
   for (std::size_t r = 0; r < model.reactions.size(); ++r) {
     const Reaction& rx = model.reactions[r];
-    if (rx.rate == 0) continue;
+    if (!rx.law && rx.rate == 0) continue;
     std::fill(in_region.begin(), in_region.end(), rx.voxels.empty() ? 1 : 0);
     for (std::uint32_t v : rx.voxels) in_region[v] = 1;
     for (std::size_t i = 0; i < n; ++i) {
@@ -52,7 +69,8 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
                                                         graph.kind[i]) != rx.kinds.end();
       if (!kind_ok || !in_region[i]) continue;
       t.c_[i * nr + r] =
-          mass_action::voxel_constant(rx.rate, t.reactions_[r].order, graph.volume[i]);
+          rx.law ? graph.volume[i]
+                 : mass_action::voxel_constant(rx.rate, t.reactions_[r].order, graph.volume[i]);
     }
   }
   // Neumann: the first layer of non-wall particles, i.e. those with a wall
@@ -74,6 +92,31 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
     for (std::size_t r = 0; r < nr; ++r) t.active_[i] |= t.c_[i * nr + r] > 0 ? 1 : 0;
   }
   return t;
+}
+
+double ReactionTable::law_propensity(std::size_t r, std::uint32_t i, double volume,
+                                     const std::int64_t* counts, std::size_t n_voxels) const {
+  const LawEntry& entry = laws_[reactions_[r].law];
+  for (const auto& [s, nu] : entry.needs) {
+    if (counts[s * n_voxels + i] < nu) return 0.0;  // a reactant is missing
+  }
+  const rate_law::RateLaw& law = entry.law;
+  const std::vector<int>& sp = law.species();
+  double* c = scratch_.data();
+  for (std::size_t k = 0; k < sp.size(); ++k) {
+    c[k] = static_cast<double>(counts[sp[k] * n_voxels + i]) / volume;
+  }
+  const double a = volume * law.density(c, 0.0);
+  if (a >= 0 && a < std::numeric_limits<double>::infinity()) return a;
+  std::string state;
+  for (std::size_t k = 0; k < sp.size(); ++k) {
+    state +=
+        (k ? ", " : "") + species_[sp[k]] + " = " + std::to_string(counts[sp[k] * n_voxels + i]);
+  }
+  throw NumericalFailure("reaction '" + names_[r] + "' (" + law.definition().text() +
+                         "): propensity " + std::to_string(a) + " in voxel " + std::to_string(i) +
+                         " (V = " + std::to_string(volume) + ", counts {" + state +
+                         "}); allowed: a finite propensity >= 0");
 }
 
 }  // namespace sadr::ssa

@@ -96,6 +96,7 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
     out.reactants = stoichiometry(rx.reactants(), index, here + ".reactants");
     out.products = stoichiometry(rx.products(), index, here + ".products");
     out.rate = rx.rate();
+    if (rx.has_law()) out.law = wire::from_proto(rx.law(), here + ".law");
     for (int k = 0; k < rx.kinds_size(); ++k) {
       if (rx.kinds(k) > 3) {
         throw InvalidArgument(here + ".kinds[" + std::to_string(k) +

@@ -13,6 +13,7 @@
 
 #include "sadr/common/inflow_box.hpp"
 #include "sadr/common/particle_state.hpp"
+#include "sadr/common/rate_law.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/common/v1/model.pb.h"
 #include "sadr/common/v1/particles.pb.h"
@@ -22,6 +23,11 @@ namespace sadr::wire {
 
 void to_proto(const Status& in, common::v1::Status& out);
 Status from_proto(const common::v1::Status& in);
+
+/// A rate law (common/rate_law.hpp) on the wire (rate_law_convert.cpp); from_proto
+/// checks the type name (the law itself is checked when a core compiles it).
+void to_proto(const rate_law::Definition& in, common::v1::RateLaw& out);
+rate_law::Definition from_proto(const common::v1::RateLaw& in, std::string_view where);
 
 void to_proto(const Box& in, common::v1::Box& out);
 /// Throws InvalidArgument (prefixing `where`, e.g. "init.model.box") on bad input.

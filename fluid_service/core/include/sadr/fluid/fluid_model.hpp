@@ -10,11 +10,13 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/common/rate_law.hpp"
 
 namespace sadr::fluid {
 
@@ -68,7 +70,8 @@ struct SpeciesSpec {
   std::vector<WallCondition> wall_conditions;
 };
 
-/// Mass-action reaction among deterministic species, in concentration units.
+/// Reaction among deterministic species, in concentration units: mass action
+/// (`rate`) or another rate law (`law`, common/rate_law.hpp, v = law(C)).
 /// Rate of reaction: v = rate * prod_s C_s^nu_s / nu_s!  (the 1/nu! matches the RDME
 /// combinatorics, so A + A -> 0 with `rate` k gives dC_A/dt = -k C_A^2, SPEC section 4).
 /// dC_s/dt += (products_s - reactants_s) * v.
@@ -81,6 +84,8 @@ struct ReactionSpec {
   std::vector<std::uint32_t> particles;  ///< optional restriction to these particle indices
                                          ///< (into the initial state); empty = all. Checked
                                          ///< against N at initialize().
+  /// A law other than mass action (species by FluidModel::species names); `rate` unused.
+  std::optional<rate_law::Definition> law{};
 };
 
 /// Boussinesq body acceleration a = coefficient * (C_species - reference) * direction.

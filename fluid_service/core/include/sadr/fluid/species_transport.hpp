@@ -69,8 +69,8 @@ class SpeciesTransport {
   /// species or a site of some reaction (ReactionSpec::kinds contains kWall). Backends gather
   /// species terms for such walls with add_pair_wall() and call add_reactions() for them.
   [[nodiscard]] bool active_wall(std::size_t i) const { return active_wall_[i] != 0; }
-  /// Adds the mass-action reaction rates at particle i to dc (only reactions that fire at i:
-  /// ReactionSpec::kinds and ::particles; held Dirichlet values are never changed).
+  /// Adds the reaction rates (mass action or rate law) at particle i to dc (only reactions that
+  /// fire at i: ReactionSpec::kinds and ::particles; held Dirichlet values are never changed).
   void add_reactions(std::size_t i, const std::vector<std::vector<double>>& c,
                      std::vector<std::vector<double>>& dc) const;
   /// max_i sum_r sum_{s in reactants} nu_s |dv_r/dC_s| [1/time]: the largest reaction
@@ -94,6 +94,7 @@ class SpeciesTransport {
   };
   struct CompiledReaction {
     double rate;
+    int law = -1;  // index into laws_[thread], -1 = mass action
     std::vector<Term> reactants;
     std::vector<std::pair<int, int>> delta;  // (species, net stoichiometry change)
     std::vector<std::uint8_t> fires;         // [particle] 1 where the reaction fires
@@ -102,6 +103,8 @@ class SpeciesTransport {
   };
   [[nodiscard]] double velocity(const CompiledReaction& r, std::size_t i,
                                 const std::vector<std::vector<double>>& c) const;
+  [[nodiscard]] double law_rate_scale(const CompiledReaction& r, std::size_t i,
+                                      const std::vector<std::vector<double>>& c) const;
 
   std::vector<int> transported_;
   std::vector<double> two_kappa_;
@@ -112,6 +115,10 @@ class SpeciesTransport {
   std::vector<std::vector<double>> neumann_grad_;  // [species][region + 1] = q / kappa
   std::vector<std::vector<double>> dirichlet_;     // [species][region + 1] = value
   std::vector<CompiledReaction> reactions_;
+  /// Rate laws, one copy per thread (a RateLaw's evaluation is not reentrant):
+  /// laws_[thread][law]; scratch_[thread] holds one law's concentrations.
+  mutable std::vector<std::vector<rate_law::RateLaw>> laws_;
+  mutable std::vector<std::vector<double>> scratch_;
   std::vector<std::uint8_t> reacts_;       // some reaction fires at the particle
   std::vector<std::uint8_t> active_wall_;  // wall particle with species transport (see above)
 };

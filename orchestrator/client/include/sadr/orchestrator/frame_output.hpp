@@ -7,7 +7,13 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
 #include <vector>
+
+#include "sadr/common/rate_law.hpp"
 
 #include "sadr/orchestrator/frame_writers.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
@@ -34,11 +40,17 @@ class FrameOutput {
 
  private:
   void list(std::size_t index, double t);
+  /// Evaluates the assigned species in output.species into `values` (their inputs
+  /// are in it: concentrations, or counts of stochastic species, divided by V_i).
+  void evaluate_assigned(std::map<std::string, std::vector<double>>& values,
+                         const ParticleState& state);
 
   const Scene& scene_;
   std::filesystem::path dir_;
   RunManifest& manifest_;
   PvdCollection pvd_;
+  std::vector<std::pair<std::string, rate_law::RateLaw>> assigned_;  ///< written ones
+  std::set<std::string> inputs_;  ///< species the assigned ones read
 };
 
 }  // namespace sadr::orchestrator

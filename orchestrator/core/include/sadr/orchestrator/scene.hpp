@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/common/rate_law.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
 #include "sadr/orchestrator/region.hpp"
 
@@ -57,17 +58,29 @@ struct Species {
   std::vector<double> initial;
 };
 
+/// A species given by an expression of the others' concentrations (an SBML
+/// assignment rule, scene key `assigned`): evaluated where frames are
+/// written, as a concentration; never integrated, transported or sent to a
+/// service. Rate-law expressions that name it read its expression.
+struct AssignedSpecies {
+  std::string name;
+  std::string expression;  ///< as written
+  std::string expanded;    ///< other assigned species substituted, parenthesised
+  std::string origin;      ///< "file:line", for messages
+};
+
 struct StoichiometryEntry {
   std::string species;
   std::uint32_t count = 1;  ///< >= 1
   bool operator==(const StoichiometryEntry&) const = default;
 };
 
-/// One irreversible mass-action reaction ("A + B -> C"); reversible ones in
-/// the file become two of these ("name" and "name_reverse").
+/// One irreversible reaction ("A + B -> C"); reversible ones in the file
+/// become two of these ("name" and "name_reverse"). Mass action (`rate`) or
+/// another rate law (`law`, common/rate_law.hpp).
 struct Reaction {
   std::string name;
-  std::vector<StoichiometryEntry> reactants;  ///< total order <= 2
+  std::vector<StoichiometryEntry> reactants;  ///< total order <= 2 for mass action
   std::vector<StoichiometryEntry> products;
   /// Rate constant in concentration units: order 0 [molecules/(length^d time)],
   /// order 1 [1/time], order 2 [length^d/(molecules time)], A + A defined by
@@ -76,6 +89,9 @@ struct Reaction {
   std::vector<ParticleKind> kinds;   ///< where it may fire; default {fluid}
   std::vector<std::string> regions;  ///< empty = everywhere
   bool stochastic = true;            ///< among stochastic species (SSA) or deterministic (fluid)
+  /// A law other than mass action (scene key `law`); `rate` is then unused.
+  /// Assigned species are already substituted into an expression.
+  std::optional<rate_law::Definition> law{};
   [[nodiscard]] unsigned order() const;
 };
 
@@ -169,7 +185,9 @@ struct Scene {
   ParticleState particles;       ///< ids = 0..N-1, velocities present
   std::vector<Region> regions;   ///< named regions with resolved membership
   FluidSettings fluid;
+  std::map<std::string, double> parameters;  ///< named constants of rate laws
   std::vector<Species> species;
+  std::vector<AssignedSpecies> assigned;  ///< not in `species`: no service sees them
   std::vector<Reaction> reactions;
   TimeSettings time;
   OutputSettings output;
@@ -177,6 +195,7 @@ struct Scene {
   std::uint64_t seed = 0;
 
   [[nodiscard]] const Species* find_species(std::string_view name) const;
+  [[nodiscard]] const AssignedSpecies* find_assigned(std::string_view name) const;
   [[nodiscard]] const Region* find_region(std::string_view name) const;
   [[nodiscard]] std::size_t stochastic_species_count() const;
   [[nodiscard]] std::size_t deterministic_species_count() const;

@@ -11,12 +11,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/common/rate_law.hpp"
 
 namespace sadr::ssa {
 
@@ -41,7 +43,8 @@ struct Species {
   double diffusivity = 0;  ///< kappa [L^2/T]; 0 = immobile (no diffusion bookkeeping)
 };
 
-/// A mass-action reaction of total order 0, 1 or 2.
+/// A reaction: mass action of total order 0, 1 or 2 (`rate`), or any other
+/// rate law (`law`, common/rate_law.hpp; then any stoichiometry).
 struct Reaction {
   std::string name;
   std::vector<std::pair<int, int>> reactants;  ///< (species index, stoichiometry >= 1)
@@ -52,6 +55,9 @@ struct Reaction {
   double rate = 0;
   std::vector<ParticleKind> kinds;    ///< particle kinds where it may fire; empty = fluid only
   std::vector<std::uint32_t> voxels;  ///< optional restriction to particle indices; empty = all
+  /// A law other than mass action (species by the names of Model::species;
+  /// `rate` is then unused). Propensity a_i = V_i v(X_i / V_i).
+  std::optional<rate_law::Definition> law{};
 };
 
 /// Dirichlet reservoir: wall particles hold round(C V_i) molecules of
@@ -106,6 +112,8 @@ struct Model {
   void validate() const;
   /// Index of the species called `name`; throws InvalidArgument listing the known names.
   [[nodiscard]] int species_index(std::string_view name) const;
+  /// The species names, in index order (what rate laws are compiled against).
+  [[nodiscard]] std::vector<std::string> species_names() const;
   /// 64-bit fingerprint of every field (used to refuse restoring a snapshot
   /// into a solver built with another model).
   [[nodiscard]] std::uint64_t fingerprint() const;

@@ -8,10 +8,12 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "sadr/common/mass_action.hpp"
+#include "sadr/common/rate_law.hpp"
 #include "sadr/ssa/diffusion_graph.hpp"
 #include "sadr/ssa/model.hpp"
 #include "sadr/ssa/prefetch.hpp"
@@ -20,6 +22,7 @@ namespace sadr::ssa {
 
 /// One reaction in event-loop form.
 struct CompiledReaction {
+  int law = -1;  ///< index into ReactionTable's laws, -1 = mass action
   int order = 0;
   int n_reactants = 0;                      ///< 0, 1 or 2 distinct reactant species
   std::array<int, 2> species{0, 0};         ///< reactant species
@@ -36,7 +39,8 @@ class ReactionTable {
   [[nodiscard]] const CompiledReaction& reaction(std::size_t r) const { return reactions_[r]; }
   /// true if some reaction has a non-zero constant in voxel i.
   [[nodiscard]] bool active(std::uint32_t i) const { return active_[i] != 0; }
-  /// Stochastic rate constant c of reaction r in voxel i [1/T].
+  /// Stochastic rate constant c of reaction r in voxel i [1/T]; for a rate
+  /// law, V_i where it fires (else 0).
   [[nodiscard]] double constant(std::uint32_t i, std::size_t r) const {
     return c_[i * reactions_.size() + r];
   }
@@ -50,13 +54,32 @@ class ReactionTable {
                                   std::size_t n_voxels) const {
     const CompiledReaction& rx = reactions_[r];
     double a = constant(i, r);
+    if (rx.law >= 0) return a == 0 ? 0.0 : law_propensity(r, i, a, counts, n_voxels);
     for (int k = 0; k < rx.n_reactants; ++k) {
       a *= mass_action::combinations(counts[rx.species[k] * n_voxels + i], rx.nu[k]);
     }
     return a;
   }
+  /// The rate law of reaction r (requires reaction(r).law >= 0).
+  [[nodiscard]] const rate_law::RateLaw& law(std::size_t r) const {
+    return laws_[reactions_[r].law].law;
+  }
 
  private:
+  /// a = V v(X / V) for rate-law reaction r in voxel i of volume V (0 if a
+  /// reactant has fewer molecules than its stoichiometry); throws
+  /// NumericalFailure (reaction, voxel, counts) if a is negative or non-finite.
+  [[nodiscard]] double law_propensity(std::size_t r, std::uint32_t i, double volume,
+                                      const std::int64_t* counts, std::size_t n_voxels) const;
+
+  struct LawEntry {
+    rate_law::RateLaw law;
+    std::vector<std::pair<int, int>> needs;  ///< reactants (species, nu): a = 0 if X < nu
+  };
+  std::vector<LawEntry> laws_;
+  std::vector<std::string> names_;       ///< reaction names (messages)
+  std::vector<std::string> species_;     ///< species names (messages)
+  mutable std::vector<double> scratch_;  ///< concentrations of one law evaluation
   std::vector<CompiledReaction> reactions_;
   std::vector<double> c_;             ///< [voxel * R + r]
   std::vector<std::uint8_t> active_;  ///< per voxel

@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: MIT
+// Rate laws in the SSA (one well-mixed voxel) against the CME solved by FSP:
+// the propensity a(X) = V v(X / V) of a Michaelis-Menten and a Hill law
+// (common/rate_law.hpp), and an expression law that spells the built-in one.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "sadr/ssa/nsm_solver.hpp"
+#include "ssa_test_support.hpp"
+
+namespace sadr::ssa {
+namespace {
+
+using testing::Moments;
+
+Model one_voxel_model(Reaction rx, std::vector<Species> species) {
+  Model m;
+  m.species = std::move(species);
+  m.reactions = {std::move(rx)};
+  m.box = testing::make_box(1, 1.0, false);
+  m.smoothing_length = 0.5;
+  return m;
+}
+
+/// The single particle of volume V = m / rho (the box holds it at x = 0.5).
+ParticleState voxel(double volume) {
+  ParticleState p = testing::make_lattice(1, 1, 1.0);
+  p.masses[0] = volume;
+  return p;
+}
+
+/// S -> 0 with the given law; E (species 1) is a catalyst the law may read.
+Reaction decay(rate_law::Definition law) {
+  Reaction rx;
+  rx.name = "decay";
+  rx.reactants = {{0, 1}};
+  rx.law = std::move(law);
+  return rx;
+}
+
+rate_law::Definition michaelis(double kcat, double km) {
+  rate_law::Definition d;
+  d.type = rate_law::Type::kMichaelisMenten;
+  d.kcat = kcat;
+  d.km = km;
+  d.substrate = std::string("S");
+  d.catalyst = std::string("E");
+  return d;
+}
+
+rate_law::Definition hill(double vmax, double k, double n) {
+  rate_law::Definition d;
+  d.type = rate_law::Type::kHill;
+  d.vmax = vmax;
+  d.half = k;
+  d.n = n;
+  d.of = std::string("S");
+  return d;
+}
+
+/// FSP of the pure death chain X -> X - 1 with rates a[x] (x = 0..x0), by
+/// uniformization: P(t) = sum_k Poisson(k; L t) (I + Q/L)^k P(0) (exact up
+/// to the 1e-15 Poisson tail; the chain is finite, no truncation error).
+std::vector<double> death_chain(const std::vector<double>& a, double t) {
+  const std::size_t n = a.size();
+  const double lam = *std::max_element(a.begin(), a.end());
+  std::vector<double> p(n, 0.0), out(n, 0.0), next(n);
+  p[n - 1] = 1.0;
+  double w = std::exp(-lam * t), cum = 0;
+  for (int k = 0; cum < 1 - 1e-15 && k < 100000; ++k) {
+    if (k > 0) w *= lam * t / k;
+    cum += w;
+    for (std::size_t x = 0; x < n; ++x) out[x] += w * p[x];
+    for (std::size_t x = 0; x < n; ++x) {
+      next[x] = p[x] * (1 - a[x] / lam) + (x + 1 < n ? p[x + 1] * a[x + 1] / lam : 0.0);
+    }
+    p.swap(next);
+  }
+  return out;
+}
+
+struct Exact {
+  double mean = 0, var = 0, mu4 = 0;
+};
+Exact moments(const std::vector<double>& p) {
+  Exact e;
+  for (std::size_t x = 0; x < p.size(); ++x) e.mean += x * p[x];
+  for (std::size_t x = 0; x < p.size(); ++x) {
+    const double d = x - e.mean;
+    e.var += d * d * p[x];
+    e.mu4 += d * d * d * d * p[x];
+  }
+  return e;
+}
+
+// Michaelis-Menten (kcat = 0.8, Km = 5, E = 3 molecules held) and Hill (Vmax = 6,
+// K = 8, n = 2.5) decay of S from 40 molecules in V = 1, at 4 times each: mean and
+// variance z-tests, M = 2 laws x 4 times x 2 = 16 comparisons, family-wise
+// false-failure rate 1e-4 (Bonferroni), R = 3000 realizations each.
+TEST(RateLawCme, MichaelisMentenAndHillMatchFsp) {
+  const std::vector<double> times = {1, 3, 6, 12};
+  const int r_count = 3000;
+  const std::int64_t s0 = 40, e0 = 3;
+  const double zs = testing::z_star(1e-4, 16);
+  double worst = 0;
+  for (int which = 0; which < 2; ++which) {
+    const rate_law::Definition law = which == 0 ? michaelis(0.8, 5) : hill(6, 8, 2.5);
+    const rate_law::RateLaw f(law, {"S", "E"});
+    std::vector<double> a(s0 + 1);
+    for (std::int64_t x = 0; x <= s0; ++x) {  // V = 1: a(x) = v(x)
+      const double c[2] = {static_cast<double>(x), static_cast<double>(e0)};
+      a[x] = f.density(c, 0);
+    }
+    std::vector<Moments> mom(times.size());
+    for (int r = 0; r < r_count; ++r) {
+      NsmSolver s(one_voxel_model(decay(law), {{"S", 0}, {"E", 0}}),
+                  rng::mix_seed(99, static_cast<std::uint64_t>(r) + 100003 * which));
+      s.update_graph(voxel(1.0));
+      s.set_counts(0, std::vector<std::int64_t>{s0});
+      s.set_counts(1, std::vector<std::int64_t>{e0});
+      for (std::size_t t = 0; t < times.size(); ++t) {
+        s.advance(times[t]);
+        mom[t].add(static_cast<double>(s.counts(0)[0]));
+      }
+      ASSERT_EQ(s.counts(1)[0], e0);  // the catalyst is never consumed
+    }
+    for (std::size_t t = 0; t < times.size(); ++t) {
+      const Exact ex = moments(death_chain(a, times[t]));
+      const double z_mean = (mom[t].mean() - ex.mean) / std::sqrt(ex.var / r_count);
+      const double z_var = testing::variance_z(mom[t].var(), ex.var, ex.mu4, r_count);
+      EXPECT_LE(std::abs(z_mean), zs) << "law " << which << " t=" << times[t];
+      EXPECT_LE(std::abs(z_var), zs) << "law " << which << " t=" << times[t];
+      worst = std::max({worst, std::abs(z_mean), std::abs(z_var)});
+    }
+  }
+  RecordProperty("max_abs_z", std::to_string(worst));
+}
+
+// An expression that spells the built-in law gives the same propensities, hence
+// the same trajectory from the same seed (bit for bit), in a voxel of V != 1.
+TEST(RateLawCme, ExpressionSpellingABuiltInLawGivesIdenticalTrajectories) {
+  rate_law::Definition e;
+  e.type = rate_law::Type::kExpression;
+  e.expression = std::string("kcat*E*S/(Km+S)");
+  e.parameters = {{"kcat", 0.8}, {"Km", 5.0}};
+  rate_law::Definition h;
+  h.type = rate_law::Type::kExpression;
+  h.expression = std::string("Vmax*S^n/(K^n+S^n)");
+  h.parameters = {{"Vmax", 6.0}, {"K", 8.0}, {"n", 2.5}};
+  for (const auto& [builtin, spelled] :
+       {std::pair{michaelis(0.8, 5), e}, std::pair{hill(6, 8, 2.5), h}}) {
+    std::vector<std::int64_t> trace[2];
+    int k = 0;
+    for (const auto& law : {builtin, spelled}) {
+      NsmSolver s(one_voxel_model(decay(law), {{"S", 0}, {"E", 0}}), 4242);
+      s.update_graph(voxel(2.0));
+      s.set_counts(0, std::vector<std::int64_t>{400});
+      s.set_counts(1, std::vector<std::int64_t>{7});
+      for (double t = 0.5; t <= 20; t += 0.5) {
+        s.advance(t);
+        trace[k].push_back(s.counts(0)[0]);
+      }
+      ++k;
+    }
+    EXPECT_EQ(trace[0], trace[1]);
+    EXPECT_LT(trace[0].back(), 400);
+  }
+}
+
+// Propensities that become non-finite at run time are refused, with the reaction,
+// the law and the counts (an expression admissible on the load grid, 1/(S - 3)).
+TEST(RateLawCme, NonFinitePropensityIsRefused) {
+  rate_law::Definition d;
+  d.type = rate_law::Type::kExpression;
+  d.expression = std::string("1/abs(S-3.5)");
+  NsmSolver s(one_voxel_model(decay(d), {{"S", 0}, {"E", 0}}), 1);
+  s.update_graph(voxel(2.0));  // V = 2: S = 7 gives C = 3.5
+  try {
+    s.set_counts(0, std::vector<std::int64_t>{7});
+    FAIL() << "no error";
+  } catch (const NumericalFailure& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("decay"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("1/abs(S-3.5)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("S = 7"), std::string::npos) << msg;
+  }
+}
+
+}  // namespace
+}  // namespace sadr::ssa
