@@ -188,8 +188,9 @@ void RateLaw::compile_expression(const std::vector<std::string>& species_names, 
   uses_time_ = used.count("t") > 0;
   if (uses_time_ && !allow_time) {
     throw InvalidArgument(where() +
-                          "reads the time t, which this path does not support (a stochastic "
-                          "propensity must be constant between events)");
+                          "reads the time t, which rate laws do not support yet (the SSA would "
+                          "need propensities that change between events, the fluid the stage "
+                          "time)");
   }
   for (std::size_t s = 0; s < species_names.size(); ++s) {
     if (used.count(species_names[s])) species_.push_back(static_cast<int>(s));

@@ -23,7 +23,7 @@ std::uint32_t RdmeState::fire_open(std::uint32_t i, double u) {
   std::size_t last_index = 0;
   if (v.active) {
     for (std::size_t r = 0; r < table_.reaction_count(); ++r) {
-      const double p = table_.propensity(r, i, counts_.data(), n_);
+      const double p = reaction_propensity(r, i);
       if (u < p) {
         apply_reaction_open(r, i);
         return kNoVoxel;
@@ -51,6 +51,8 @@ std::uint32_t RdmeState::fire_open(std::uint32_t i, double u) {
       const std::uint32_t j = edges[k].target;
       --xs[i];
       ++xs[j];
+      refresh_laws(s, i);
+      refresh_laws(s, j);
       return j;
     }
     u -= p;
@@ -65,6 +67,8 @@ std::uint32_t RdmeState::fire_open(std::uint32_t i, double u) {
     const std::uint32_t j = edges[v.end - 1].target;
     --xs[i];
     ++xs[j];
+    refresh_laws(static_cast<int>(last_index), i);
+    refresh_laws(static_cast<int>(last_index), j);
     return j;
   }
   throw Error(StatusCode::kInternal,
@@ -97,7 +101,7 @@ std::uint32_t RdmeState::fire(std::uint32_t i, double u) {
   double last_p = 0;
   if (voxels_[i].active) {
     for (std::size_t r = 0; r < table_.reaction_count(); ++r) {
-      const double p = table_.propensity(r, i, counts_.data(), n_);
+      const double p = reaction_propensity(r, i);
       if (u < p) {
         apply_reaction(r, i);
         return kNoVoxel;

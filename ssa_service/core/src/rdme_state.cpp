@@ -91,11 +91,32 @@ bool RdmeState::update_graph(const ParticleState& particles) {
   inputs_.masses = particles.masses;
   inputs_.kinds = graph_.kind;
   if (counts_.empty()) counts_.assign(model_.species.size() * n_, 0);
+  law_readers_.clear();
+  if (table_.law_count() > 0) {
+    law_readers_.resize(model_.species.size());
+    for (std::size_t k = 0; k < table_.law_count(); ++k) {
+      for (const int s : table_.law(table_.law_reaction(static_cast<int>(k))).species()) {
+        law_readers_[s].push_back(static_cast<int>(k));
+      }
+    }
+  }
   assign_free_walls();
   assign_reservoir_concentrations();
   compute_free_sums();
   apply_reservoirs();
+  refresh_all_laws();
   return true;
+}
+
+void RdmeState::refresh_all_laws() {
+  const std::size_t nl = table_.law_count();
+  law_a_.assign(n_ * nl, 0.0);
+  for (std::size_t k = 0; k < nl; ++k) {
+    const std::size_t r = table_.law_reaction(static_cast<int>(k));
+    for (std::size_t i = 0; i < n_; ++i) {
+      law_a_[i * nl + k] = table_.propensity(r, static_cast<std::uint32_t>(i), counts_.data(), n_);
+    }
+  }
 }
 
 void RdmeState::assign_free_walls() {
@@ -199,6 +220,7 @@ bool RdmeState::apply_reservoirs() {
       }
     }
   }
+  if (changed) refresh_all_laws();
   return changed;
 }
 
@@ -223,6 +245,7 @@ void RdmeState::set_counts(int species, std::span<const std::int64_t> counts) {
   }
   std::copy(counts.begin(), counts.end(), counts_.begin() + species * n_);
   apply_reservoirs();
+  refresh_all_laws();
 }
 
 std::span<const std::int64_t> RdmeState::counts(int species) const {
@@ -239,6 +262,7 @@ void RdmeState::restore_counts(std::vector<std::int64_t> counts) {
                           " entries, expected " + std::to_string(counts_.size()));
   }
   counts_.assign(counts.begin(), counts.end());
+  refresh_all_laws();
 }
 
 void RdmeState::apply_reaction(std::size_t r, std::uint32_t i) {
@@ -247,6 +271,7 @@ void RdmeState::apply_reaction(std::size_t r, std::uint32_t i) {
     std::int64_t& x = counts_[s * n_ + i];
     x += delta;
     assert(x >= 0);
+    refresh_laws(s, i);
   }
 }
 
@@ -254,9 +279,11 @@ std::uint32_t RdmeState::apply_jump(int s, std::uint32_t i, std::uint32_t j) {
   if (!fixed(s, i)) {
     assert(counts_[s * n_ + i] > 0);
     --counts_[s * n_ + i];
+    refresh_laws(s, i);
   }
   if (fixed(s, j)) return kNoVoxel;  // absorbed by the reservoir
   ++counts_[s * n_ + j];
+  refresh_laws(s, j);
   return j;
 }
 

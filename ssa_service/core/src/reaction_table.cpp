@@ -44,7 +44,8 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
     t.names_.push_back(rx.name);
     if (rx.law) {
       t.reactions_.back().law = static_cast<int>(t.laws_.size());
-      t.laws_.push_back({rate_law::RateLaw(*rx.law, t.species_, false), rx.reactants});
+      t.laws_.push_back(
+          {rate_law::RateLaw(*rx.law, t.species_, false), rx.reactants, t.reactions_.size() - 1});
       widest = std::max(widest, t.laws_.back().law.species().size());
     }
   }

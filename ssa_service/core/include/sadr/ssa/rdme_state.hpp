@@ -72,10 +72,15 @@ class RdmeState {
   [[nodiscard]] double reaction_rate(std::uint32_t i) const {
     if (!voxels_[i].active) return 0.0;
     double a = 0;
-    for (std::size_t r = 0; r < table_.reaction_count(); ++r) {
-      a += table_.propensity(r, i, counts_.data(), n_);
-    }
+    for (std::size_t r = 0; r < table_.reaction_count(); ++r) a += reaction_propensity(r, i);
     return a;
+  }
+  /// Propensity of reaction r in voxel i [1/T]: mass action from the counts, a rate
+  /// law from its cache (kept current by refresh_laws: the SSA's dependency graph).
+  [[nodiscard]] double reaction_propensity(std::size_t r, std::uint32_t i) const {
+    const int k = table_.reaction(r).law;
+    return k < 0 ? table_.propensity(r, i, counts_.data(), n_)
+                 : law_a_[i * table_.law_count() + static_cast<std::size_t>(k)];
   }
   /// What voxel i is for species s (boundary semantics above).
   enum class VoxelRole : std::uint8_t {
@@ -200,7 +205,21 @@ class RdmeState {
     for (const auto& [s, delta] : table_.reaction(r).change) {
       counts_[static_cast<std::size_t>(s) * n_ + i] += delta;
     }
+    if (!law_readers_.empty()) {
+      for (const auto& [s, delta] : table_.reaction(r).change) refresh_laws(s, i);
+    }
   }
+  /// Recomputes the cached propensities of the rate laws that read species s in
+  /// voxel i (law_readers_[s]): after an event changed X_si, only those can change.
+  void refresh_laws(int s, std::uint32_t i) {
+    if (law_readers_.empty()) return;
+    const std::size_t nl = table_.law_count();
+    for (const int k : law_readers_[s]) {
+      law_a_[i * nl + k] = table_.propensity(table_.law_reaction(k), i, counts_.data(), n_);
+    }
+  }
+  /// Recomputes every cached rate-law propensity (counts or volumes set wholesale).
+  void refresh_all_laws();
   void assign_reservoir_concentrations();
   void assign_free_walls();
   /// Out-edge of i picked by the residual v for a species with free walls.
@@ -224,6 +243,10 @@ class RdmeState {
   std::vector<double> free_sum_;         ///< per (slot, voxel): jump_weight_sum()
   std::size_t n_ = 0;
   bool has_walls_ = false;
+  /// Rate-law propensities [voxel * law_count + law] and, per species, the laws
+  /// that read it (empty when the model has no rate law).
+  std::vector<double> law_a_;
+  std::vector<std::vector<int>> law_readers_;
 };
 
 }  // namespace sadr::ssa

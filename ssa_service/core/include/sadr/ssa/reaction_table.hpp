@@ -60,6 +60,9 @@ class ReactionTable {
     }
     return a;
   }
+  /// Number of rate-law reactions; law k belongs to reaction law_reaction(k).
+  [[nodiscard]] std::size_t law_count() const { return laws_.size(); }
+  [[nodiscard]] std::size_t law_reaction(int k) const { return laws_[k].reaction; }
   /// The rate law of reaction r (requires reaction(r).law >= 0).
   [[nodiscard]] const rate_law::RateLaw& law(std::size_t r) const {
     return laws_[reactions_[r].law].law;
@@ -75,6 +78,7 @@ class ReactionTable {
   struct LawEntry {
     rate_law::RateLaw law;
     std::vector<std::pair<int, int>> needs;  ///< reactants (species, nu): a = 0 if X < nu
+    std::size_t reaction = 0;                ///< its reaction index
   };
   std::vector<LawEntry> laws_;
   std::vector<std::string> names_;       ///< reaction names (messages)
