@@ -56,6 +56,9 @@ STOP_AT = {
     "natural_convection_ra1e4_stochastic": "1.0",
     "natural_convection_ra1e5_stochastic": "1.0",
     "natural_convection_ra1e6_stochastic": "1.0",
+    "coagulation_cascade": "0.006",  # 110k tdpd particles, ~1 s CPU per sub-step of 0.003
+    "coagulation_cascade_sdpd": "0.0016",  # sub-steps of 7.9e-4
+    "coagulation_cascade_prescribed": "2.0",
 }
 
 # e2e scenes that run until a test kills a service (end 1000-2000): cut as well.
