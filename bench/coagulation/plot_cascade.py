@@ -6,7 +6,7 @@
 
 Writes PREFIX_timeseries.png (Fig. 10: thrombin IIa, fibrin Ia, antithrombin ATIII and APC at
 the centre of the injury, the mean over the fluid particles with 14 <= x <= 16, height y <= 1, all z)
-and PREFIX_fibrin.png (Fig. 9: fibrin averaged over the depth z on 1 x 0.5 bins of the x-y plane at six
+and PREFIX_fibrin.png (Fig. 9: fibrin averaged over the depth z on 1 x 1 bins of the x-y plane at six
 times, the 3 uM = 3000 nM clot threshold as a white line), and prints the qualitative features
 li2015 reports (thrombin burst then drop, fibrin rising then levelling, antithrombin dropping,
 APC rising) as numbers.
@@ -77,7 +77,7 @@ def plot_fibrin(run, path, title, nframes=6):
     fig, axes = plt.subplots(len(idx), 1, figsize=(9, 1.6 * len(idx)), sharex=True)
     axes = np.atleast_1d(axes)
     xe = np.arange(0.0, 100.0 + 1e-9, 1.0)
-    ze = np.arange(0.0, 20.0 + 1e-9, 0.5)
+    ze = np.arange(-0.5, 20.5 + 1e-9, 1.0)  # never empty on the 0.625 and 1.0 lattices
     vmax = None
     fields = []
     for k in idx:
@@ -96,7 +96,7 @@ def plot_fibrin(run, path, title, nframes=6):
             ax.contour(xc, zc, field.T, levels=[THRESHOLD], colors="w", linewidths=1)
         ax.axvspan(10, 20, ymin=0, ymax=0.04, color="r")
         ax.set_ylabel("y (height)")
-        ax.text(1, 17, f"t = {t:g}", color="w")
+        ax.text(1, 16, f"t = {t:g}", color="k", bbox={"facecolor": "w", "alpha": 0.7})
     axes[-1].set_xlabel("x (injury: red, 10 < x < 20)")
     fig.colorbar(im, ax=axes, label="fibrin Ia [nM] (depth average)")
     fig.suptitle(title)
