@@ -255,7 +255,7 @@ def channel(backend):
     else:
         lines += [
             f"  smoothing_length: {num(h)}   # 2 dx (species operator)",
-            f"  parameters: {{field: 2, max_velocity: {u_max}, wall_lo: {num(-dx / 2)}, "
+            f"  parameters: {{field: poiseuille, max_velocity: {u_max}, wall_lo: {num(-dx / 2)}, "
             f"wall_hi: {num(20 + dx / 2)}}}",
         ]
     lines += parameters_yaml(p, [("LF", ref.L_INJURY / delta)])
