@@ -94,7 +94,8 @@ def plot_fibrin(run, path, title, nframes=6):
         im = ax.pcolormesh(xe, ze, field.T, vmin=0, vmax=vmax, cmap="viridis", shading="flat")
         if np.nanmax(field) >= THRESHOLD:
             ax.contour(xc, zc, field.T, levels=[THRESHOLD], colors="w", linewidths=1)
-        ax.axvspan(10, 20, ymin=0, ymax=0.04, color="r")
+        ax.plot([10, 20], [-0.9, -0.9], "r", lw=3)  # the injury, below the first fluid row
+        ax.set_ylim(-1.2, 20.5)
         ax.set_ylabel("y (height)")
         ax.text(1, 16, f"t = {t:g}", color="k", bbox={"facecolor": "w", "alpha": 0.7})
     axes[-1].set_xlabel("x (injury: red, 10 < x < 20)")
@@ -114,7 +115,7 @@ def main():
     t, y = probe_series(run)
     title = args.title or f"{run.path.name}: injury centre (14 <= x <= 16, y <= 1)"
     plot_series(t, y, f"{args.prefix}_timeseries.png", title)
-    plot_fibrin(run, f"{args.prefix}_fibrin.png", args.title or f"{run.path.name}: fibrin")
+    plot_fibrin(run, f"{args.prefix}_fibrin.png", f"{args.title or run.path.name}: fibrin (Fig. 9)")
     print(features(t, y))
     print(f"wrote {args.prefix}_timeseries.png, {args.prefix}_fibrin.png")
     return 0
