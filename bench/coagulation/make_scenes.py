@@ -76,6 +76,15 @@ def clock_lines(p):
              f"rate: {num(p['ktPAIIa_decay'])}}}   # clock = exp(-ktPAIIa_decay t)"])
 
 
+def chemistry_tail(p, regions):
+    """The assigned species, the clock, Table III as reactions and the injury terms."""
+    lines = [f'  - {{name: {name}, assigned: "{expr}"}}   # [{idx}]'
+             for name, idx, expr in ref.ASSIGNED]
+    species_clock, reaction_clock = clock_lines(p)
+    return lines + species_clock + reactions_yaml(p) + reaction_clock + injury_reactions(
+        "LF", regions)
+
+
 def injury_reactions(factor, regions=""):
     """Table IV as volume sources: flux density x L / delta, `factor` the parameter name."""
     out = ["  # Table IV injury terms as volume sources (flux density x L / delta)"]
@@ -150,13 +159,7 @@ def well_mixed():
     for name, idx, c0, _ in ref.SPECIES:
         lines.append(f"  - {{name: {name}, stochastic: false, diffusivity: 0, "
                      f"initial: [{{concentration: {num(c0)}}}]}}   # [{idx}]")
-    for name, idx, expr in ref.ASSIGNED:
-        lines.append(f'  - {{name: {name}, assigned: "{expr}"}}   # [{idx}]')
-    species_clock, reaction_clock = clock_lines(p)
-    lines += species_clock
-    lines += reactions_yaml(p)
-    lines += reaction_clock
-    lines += injury_reactions("LF")
+    lines += chemistry_tail(p, "")
     lines += [
         "time: {coupling_step: 5.0, end: 400.0}",
         "output:",
@@ -268,13 +271,7 @@ def channel(backend):
         lines.append(f"  - {{name: {name}, stochastic: false, diffusivity: {diff:.6g}, "
                      f"initial: [{{concentration: {num(c0)}}}],   # [{idx}] Sc {sc}")
         lines.append(f"     boundaries: [{', '.join(bnd)}]}}")
-    for name, idx, expr in ref.ASSIGNED:
-        lines.append(f'  - {{name: {name}, assigned: "{expr}"}}   # [{idx}]')
-    species_clock, reaction_clock = clock_lines(p)
-    lines += species_clock
-    lines += reactions_yaml(p)
-    lines += reaction_clock
-    lines += injury_reactions("LF", ", regions: [injury]")
+    lines += chemistry_tail(p, ", regions: [injury]")
     lines += [
         f"time: {{coupling_step: 1.0, end: {num(end)}}}",
         "output:",
