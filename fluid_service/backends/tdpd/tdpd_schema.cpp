@@ -13,6 +13,9 @@ Backend tdpd_backend() {
   b.name = "tdpd";
   b.summary = "transport dissipative particle dynamics (Li et al. 2015), DPD units; docs/tdpd.md";
   b.capabilities = {true, true, true, false, {"stationary"}, {"lucy"}};
+  // tdpd_rates.cpp integrates no wall particle (their concentrations never change) and
+  // effective walls turn `free` into no flux, so wall reactions and `free` walls are refused.
+  b.capabilities.wall_species_terms = false;
   b.memory = {{710, 710, 820}, 570};  // measured 2D 705, 3D 818 B; sadr 556-566 B
   b.parameters = {
       {"a", "force", 18.75, 0.0, inf, false, false, "conservative force amplitude a_ij"},

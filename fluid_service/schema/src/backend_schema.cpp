@@ -107,12 +107,14 @@ std::string markdown_parameters(const Backend& b) {
 std::string markdown_capabilities() {
   std::string s =
       "| backend | moves particles | transports species | thermal noise | open boundaries | "
-      "wall models | kernels | requires |\n|---|---|---|---|---|---|---|---|\n";
+      "wall species terms | wall models | kernels | requires |\n"
+      "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& b : backends()) {
     const auto& c = b.capabilities;
     s += "| `" + b.name + "` | " + yes(c.moves_particles) + " | " + yes(c.transports_species) +
          " | " + yes(c.thermal_noise) + " | " + yes(c.open_boundaries) + " | " +
-         join(c.wall_models) + " | " + join(c.kernels) + " | " + join(b.required) + " |\n";
+         yes(c.wall_species_terms) + " | " + join(c.wall_models) + " | " + join(c.kernels) + " | " +
+         join(b.required) + " |\n";
   }
   return s;
 }
@@ -125,7 +127,8 @@ std::string describe() {
     s += "  moves particles: " + yes(c.moves_particles) +
          ", transports species: " + yes(c.transports_species) +
          ", thermal noise: " + yes(c.thermal_noise) +
-         ", open boundaries: " + yes(c.open_boundaries) + "\n";
+         ", open boundaries: " + yes(c.open_boundaries) +
+         ", wall species terms: " + yes(c.wall_species_terms) + "\n";
     s += "  wall models: " + join(c.wall_models) + "; kernels: " + join(c.kernels) +
          "; requires: " + join(b.required) + "\n";
     s += "  parameters (fluid.parameters):" + std::string(b.parameters.empty() ? " none\n" : "\n");

@@ -7,6 +7,7 @@
 #include <span>
 
 #include "sadr/common/status.hpp"
+#include "sadr/fluid/backend_schema.hpp"
 #include "sadr/orchestrator/reaction_equation.hpp"
 #include "scene_parts.hpp"
 
@@ -179,6 +180,22 @@ void read_initial(SceneContext& ctx, const Field& sp_field, Species& sp) {
   }
 }
 
+/// Whether the scene's fluid backend integrates deterministic species terms on wall particles
+/// (schema capability `wall_species_terms`); an unknown backend is reported elsewhere.
+bool backend_has_wall_species_terms(const SceneContext& ctx) {
+  const auto* b = sadr::fluid::schema::find(ctx.scene.fluid.backend);
+  return b == nullptr || b->capabilities.wall_species_terms;
+}
+
+/// Refuses a deterministic species term on wall particles that the backend would drop.
+void refuse_wall_term(SceneContext& ctx, const Field& at, const std::string& what) {
+  ctx.reader.error(at, what + " on wall particles: the '" + ctx.scene.fluid.backend +
+                           "' backend does not integrate deterministic species on wall "
+                           "particles (it would be silently dropped); allowed: a backend with "
+                           "wall species terms (`sadr backends`), a stochastic species, or "
+                           "fluid particles only");
+}
+
 void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
   YamlReader& r = ctx.reader;
   const ParticleState& p = ctx.scene.particles;
@@ -199,6 +216,12 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
                   : *cond == "free"    ? BoundaryCondition::kFree
                   : *cond == "inflow"  ? BoundaryCondition::kInflow
                                        : BoundaryCondition::kNone;
+    if (!sp.stochastic && !backend_has_wall_species_terms(ctx) &&
+        b.condition == BoundaryCondition::kFree) {
+      refuse_wall_term(
+          ctx, YamlReader::child(f, "condition"),
+          "condition '" + std::string(*cond) + "' of the deterministic species '" + sp.name + "'");
+    }
     const bool inflow = b.condition == BoundaryCondition::kInflow;
     const bool held = b.condition == BoundaryCondition::kDirichlet || inflow;
     if (inflow && rg && rg->shape != RegionShape::kBox && rg->shape != RegionShape::kChannel) {
@@ -493,6 +516,12 @@ void read_reactions(SceneContext& ctx, const Field& root) {
     const auto stochastic =
         check_reaction_species(ctx, eqf.node.IsDefined() ? eqf : f, rx, has_law);
     if (stochastic) rx.stochastic = *stochastic;
+    if (stochastic && !*stochastic && !backend_has_wall_species_terms(ctx) &&
+        std::any_of(rx.kinds.begin(), rx.kinds.end(),
+                    [](ParticleKind kind) { return kind != ParticleKind::kFluid; })) {
+      refuse_wall_term(ctx, YamlReader::child(f, "kinds"),
+                       "the deterministic reaction '" + rx.name + "' with kinds beyond fluid");
+    }
     if (stochastic && has_law) read_law(ctx, f, rx);
     Reaction back = rx;
     back.name = rx.name + "_reverse";

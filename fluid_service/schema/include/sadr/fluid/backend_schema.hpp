@@ -41,6 +41,10 @@ struct Capabilities {
   bool open_boundaries = false;          ///< fluid.open_boundary
   std::vector<std::string> wall_models;  ///< fluid.wall_model values (first: the default)
   std::vector<std::string> kernels;      ///< fluid.kernel values (first: the default)
+  /// Deterministic species terms on wall particles: reactions with `kinds` other than fluid,
+  /// and the `free` boundary condition (wall particles that react and change). Without it the
+  /// scene loader refuses them (they would be silently dropped).
+  bool wall_species_terms = true;
 };
 
 /// Peak resident memory per particle with this backend (bench/memory_per_particle.py: the slope
