@@ -146,7 +146,8 @@ void frame_seeds() {
   const std::string req = header("sadr.fuzz.Request");
   seed("frame", "handshake_request", join_chunks({hsh, hs.SerializeAsString(), req, "body"}));
   seed("frame", "request_before_handshake", join_chunks({req, "body", hsh, ""}));
-  seed("frame", "wrong_version", join_chunks({header("sadr.fuzz.Request", 2), "x"}));
+  seed("frame", "wrong_version",
+       join_chunks({header("sadr.fuzz.Request", sadr::kProtocolVersion + 1), "x"}));
   auto fluid = hs;
   fluid.set_expected_kind(sadr::common::v1::SERVICE_KIND_FLUID);
   seed("frame", "wrong_kind_then_type",
