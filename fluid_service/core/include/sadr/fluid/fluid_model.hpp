@@ -50,7 +50,7 @@ struct WallRegion {
 
 /// Velocity boundary condition of the wall particles (no-slip in both cases).
 enum class WallModel {
-  kStationary,          ///< wall particles keep v = 0 (SPEC section 2 default)
+  kStationary,          ///< wall particles keep v = 0 (the default; docs/method.md section 2)
   kMorrisExtrapolated,  ///< Morris, Fox & Zhu 1997: in the viscous term of a fluid-wall pair the
                         ///< wall velocity is -(d_j/d_i) v_i, i.e. v_ij = beta v_i with
                         ///< beta = min(1.5, 1 + d_j/d_i), d = distance to the region's wall plane
@@ -60,7 +60,7 @@ enum class WallModel {
 struct SpeciesSpec {
   std::string name;
   double diffusivity = 0.0;  ///< kappa [length^2/time] (>= 0)
-  /// true: the fluid backend integrates it (SPEC eq 17 with reactions);
+  /// true: the fluid backend integrates it (eq (17) with reactions, docs/method.md section 2);
   /// false: stochastic species owned by the SSA; the backend only stores the values set by
   /// set_concentrations() (used e.g. for a Boussinesq feedback).
   bool deterministic = true;
@@ -73,7 +73,7 @@ struct SpeciesSpec {
 /// Reaction among deterministic species, in concentration units: mass action
 /// (`rate`) or another rate law (`law`, common/rate_law.hpp, v = law(C)).
 /// Rate of reaction: v = rate * prod_s C_s^nu_s / nu_s!  (the 1/nu! matches the RDME
-/// combinatorics, so A + A -> 0 with `rate` k gives dC_A/dt = -k C_A^2, SPEC section 4).
+/// combinatorics, so A + A -> 0 with `rate` k gives dC_A/dt = -k C_A^2, docs/method.md section 4).
 /// dC_s/dt += (products_s - reactants_s) * v.
 struct ReactionSpec {
   std::string name;
@@ -98,7 +98,7 @@ struct BoussinesqSpec {
 
 enum class DensityMode {
   kContinuity,  ///< drho/dt from the continuity equation + Molteni-Colagrossi diffusion (default)
-  kSummation,   ///< rho_i = sum_j m_j W_ij (SPEC eq 19)
+  kSummation,   ///< rho_i = sum_j m_j W_ij (eq (19), docs/method.md section 2)
 };
 
 enum class NoiseDistribution {
@@ -147,7 +147,7 @@ struct FluidModel {
   DensityMode density_mode = DensityMode::kContinuity;
   double density_diffusion = 0.1;  ///< Molteni-Colagrossi delta (dimensionless)
   /// eps_h in r^2/(r^2 + eps_h h^2) of the species Laplacian (same as the RDME graph,
-  /// SPEC section 4; 0 gives the unbiased operator).
+  /// docs/method.md section 4; 0 gives the unbiased operator).
   double diffusion_eps = 0.01;
   BoussinesqSpec boussinesq{};
   NoiseDistribution noise = NoiseDistribution::kGaussian;

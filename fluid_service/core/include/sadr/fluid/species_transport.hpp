@@ -2,7 +2,7 @@
 /// \file species_transport.hpp
 /// Deterministic species bookkeeping shared by every backend that transports species:
 /// wall roles (Dirichlet / no-flux / Neumann) per particle and species, the pair
-/// diffusion update of SPEC eq 17, and mass-action reactions.
+/// diffusion update of docs/method.md section 2, eq (17), and the reactions (common/rate_law.hpp).
 #pragma once
 
 #include <array>
@@ -29,7 +29,7 @@ class SpeciesTransport {
   /// Sets every Dirichlet wall particle to its prescribed value.
   void apply_dirichlet(std::vector<std::vector<double>>& c) const;
 
-  /// Adds the pair term of SPEC eq 17 for every transported species to dc[s][i]:
+  /// Adds the pair term of eq (17), docs/method.md, for every transported species to dc[s][i]:
   /// dc_i += k_ij (kappa_i + kappa_j)(C_j - C_i) with C_j replaced by the Neumann ghost value
   /// C_i + (q/kappa) x_ij . n_in for a Neumann wall j, skipped for a no-flux wall j.
   /// @param i a non-wall particle; @param k_ij DiffusionTerm coefficient [1/length^2];
