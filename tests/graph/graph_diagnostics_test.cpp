@@ -54,8 +54,9 @@ TEST(GraphDiagnostics, WeightsAndRatesAreTheExtremesOverEdgesAndDiffusingSpecies
   const auto g = DiffusionGraph::build(line.model, line.p);
   double lo = INFINITY, hi = 0;
   for (const auto& e : g.edges) {
-    lo = std::min(lo, e.weight);
-    hi = std::max(hi, e.weight);
+    const double w = e.weight;  // packed edge: no reference to the field
+    lo = std::min(lo, w);
+    hi = std::max(hi, w);
   }
   ASSERT_LT(lo, hi);
   const auto d = diagnose_graph(g, line.model);

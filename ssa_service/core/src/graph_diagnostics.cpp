@@ -39,8 +39,11 @@ GraphDiagnostics diagnose_graph(const DiffusionGraph& graph, const Model& model)
     bool fluid_neighbour = false;
     for (std::uint32_t k = begin; k < end; ++k) {
       const auto& e = graph.edges[k];
-      d.min_weight = std::min(d.min_weight, e.weight);
-      d.max_weight = std::max(d.max_weight, e.weight);
+      // Edges are packed to 12 bytes (4-byte aligned): copy the weight before std::min/max
+      // bind a reference to it (a misaligned double reference is undefined behaviour).
+      const double w = e.weight;
+      d.min_weight = std::min(d.min_weight, w);
+      d.max_weight = std::max(d.max_weight, w);
       if (!graph.is_wall[e.target]) fluid_neighbour = true;
       if (i < e.target) boost::add_edge(i, e.target, u);
     }
