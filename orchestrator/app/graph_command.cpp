@@ -115,7 +115,9 @@ int cmd_graph(const CliOptions& o, const std::string& format) {
     nlohmann::json edges = nlohmann::json::array();
     for (std::size_t i = 0; i < g.graph.size(); ++i) {
       for (std::uint32_t k = g.graph.row_start[i]; k < g.graph.row_start[i + 1]; ++k) {
-        edges.push_back({i, g.graph.edges[k].target, g.graph.edges[k].weight});
+        const double w = g.graph.edges[k].weight;  // packed edge: copy, no reference
+        const std::uint32_t target = g.graph.edges[k].target;
+        edges.push_back({i, target, w});
       }
     }
     j["edges"] = edges;  // [source, target, D_ij]; the rate of species s is kappa_s D_ij
