@@ -9,6 +9,10 @@ Correctness-style measurement (peak RSS, not timing): fine on a loaded machine.
 """
 import argparse, os, subprocess, sys, tempfile, time
 
+# The process helpers (children, comm) have one home, shared with the fault campaign.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "fault"))
+from sadr_procs import children, comm  # noqa: E402
+
 SCENE = """name: mem
 dimension: {dim}
 box: {{lower: [{lo}], upper: [{hi}], periodic: [{per}]}}
@@ -29,23 +33,6 @@ def hwm(pid):
     except OSError:
         return None
     return None
-
-def children(pid):
-    out = []
-    try:
-        for tid in os.listdir(f"/proc/{pid}/task"):
-            with open(f"/proc/{pid}/task/{tid}/children") as f:
-                out += [int(c) for c in f.read().split()]
-    except OSError:
-        pass
-    return out
-
-def comm(pid):
-    try:
-        with open(f"/proc/{pid}/comm") as f:
-            return f.read().strip()
-    except OSError:
-        return "?"
 
 def measure(bindir, dim, backend, n, tmp, stochastic):
     side = round(n ** (1.0 / dim))
