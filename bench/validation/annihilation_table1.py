@@ -14,7 +14,7 @@ Usage: annihilation_table1.py --sadr build/release/bin/sadr [--np 17 33 65]
        [--nb 1000] [--realizations 100] [--end 4] [--out bench/results]
 Writes <out>/annihilation_table1.json and .md, and prints a table.
 """
-import argparse, csv, json, math, os, shutil, subprocess, sys, tempfile, time
+import argparse, csv, json, math, os, re, shutil, subprocess, sys, tempfile, time
 
 PAPER = {17: 7.285e-4, 33: 5.334e-4, 65: 6.644e-4}          # Table 1, eps_SSA (N_b = 1e4)
 PAPER_TIME = "0.7-6 s per realization (the paper's code, measured on this machine type)"
@@ -93,14 +93,16 @@ def realization_errors(sadr, np_, nb, realizations, end=4.0, seed=2019, refs_pat
         r = run_measured([sadr, "run", scene, "-r", str(realizations), "-q", "-o", out])
         if r["rc"]:
             sys.exit(f"sadr run failed (exit {r['rc']}) for Np={np_}")
-        finals = []
+        finals, events = [], []
         for k in range(realizations):
             # sadr run -r 1 writes one run into out/ itself
-            frames = os.path.join(out, f"realization_{k:04d}" if realizations > 1 else "",
-                                  "frames")
+            run_dir = os.path.join(out, f"realization_{k:04d}" if realizations > 1 else "")
+            frames = os.path.join(run_dir, "frames")
             rows = read_rows(os.path.join(frames, sorted(os.listdir(frames))[-1]))
             rows.sort(key=lambda row: int(row["id"]))
             finals.append([float(row["A"]) for row in rows])
+            with open(os.path.join(run_dir, "run.json")) as f:
+                events.append(json.load(f)["ssa_events"])  # reactions + diffusion jumps
     finally:
         shutil.rmtree(work, ignore_errors=True)
     errors, noise = {}, {}
@@ -114,7 +116,84 @@ def realization_errors(sadr, np_, nb, realizations, end=4.0, seed=2019, refs_pat
         # The metric's expected value from noise alone (refs/README.md section 8).
         noise[n] = math.sqrt(sum(var[i] / n for i in range(1, np_ - 1))) / nb / (np_ - 1)
     return {"Np": np_, "N_b": nb, "realizations": realizations, "end": end, "errors": errors,
-            "noise": noise, "cpu_s": r["cpu_s"], "wall_s": r["wall_s"]}
+            "noise": noise, "cpu_s": r["cpu_s"], "wall_s": r["wall_s"],
+            "events_per_realization": sum(events) / len(events)}
+
+
+# perf's shared objects and symbols, grouped into what a realization spends its CPU on.
+PROFILE_GROUPS = [
+    ("NSM events", lambda comm, dso, sym: dso == "ssa_service" and any(
+        k in sym for k in ("NsmSolver", "EventTree", "RdmeState", "exponential", "ziggurat"))),
+    ("SSA graph and model set-up", lambda comm, dso, sym: dso == "ssa_service" and any(
+        k in sym for k in ("Graph", "graph", "Neighbor", "Model", "lucy"))),
+    ("process start and exit (kernel: fork, exec, mmap, page faults, exit)",
+     lambda comm, dso, sym: dso == "[kernel.kallsyms]"),
+    ("dynamic linking (ld.so)", lambda comm, dso, sym: dso.startswith("ld-linux")),
+    ("wire: protobuf, ZeroMQ, libsodium", lambda comm, dso, sym: any(
+        dso.startswith(k) for k in ("libprotobuf", "libzmq", "libsodium", "libpgm"))),
+    ("sadr: orchestration and frame output", lambda comm, dso, sym: dso in ("sadr", "exe") or
+     dso.startswith("libyaml")),
+    ("libc, libstdc++ and the rest", lambda comm, dso, sym: True),
+]
+
+
+def profile_split(cmd):
+    """Runs cmd under `perf record` (user and kernel samples of the whole process tree) and
+    returns {group: fraction of the samples} over PROFILE_GROUPS, or None without perf."""
+    perf = shutil.which("perf")
+    if not perf:
+        return None
+    work = tempfile.mkdtemp(prefix="sadr-table1-perf-")
+    try:
+        data = os.path.join(work, "perf.data")
+        rec = subprocess.run([perf, "record", "-q", "-F", "5000", "-o", data, "--"] + cmd,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        if rec.returncode:
+            return None
+        rep = subprocess.run([perf, "report", "-i", data, "--sort", "comm,dso,sym", "--stdio",
+                              "-g", "none"], capture_output=True, text=True)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    split = {g: 0.0 for g, _ in PROFILE_GROUPS}
+    for line in rep.stdout.splitlines():
+        m = re.match(r"\s*([\d.]+)%\s+(\S+)\s+(\S+)\s+\[.\]\s+(.*)$", line)
+        if not m:
+            continue
+        pct, comm, dso, sym = float(m[1]), m[2], m[3], m[4]
+        for g, match in PROFILE_GROUPS:
+            if match(comm, dso, sym):
+                split[g] += pct / 100.0
+                break
+    return split
+
+
+def cost_split(sadr, np_, nb, realizations, end=1.0, seed=2019):
+    """Where the CPU time of a realization goes: one `sadr run -r R` of the Table 1 scene
+    (N_b = 0: no molecules, the fixed cost of a realization), CPU per realization and events
+    per realization from each run.json, and, where perf exists, the split of a second,
+    profiled run over PROFILE_GROUPS."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from measure import run_measured
+    work = tempfile.mkdtemp(prefix=f"sadr-table1-split-{np_}-")
+    try:
+        scene = os.path.join(work, "scene.yaml")
+        with open(scene, "w") as f:
+            f.write(SCENE.format(np=np_, dx=1.0 / (np_ - 1), nb=int(nb), end=end, seed=seed))
+        out = os.path.join(work, "out")
+        cmd = [sadr, "run", scene, "-r", str(realizations), "-q", "-o", out]
+        r = run_measured(cmd)
+        if r["rc"]:
+            sys.exit(f"sadr run failed (exit {r['rc']}) for Np={np_}, N_b={nb}")
+        events = []
+        for k in range(realizations):
+            with open(os.path.join(out, f"realization_{k:04d}", "run.json")) as f:
+                events.append(json.load(f)["ssa_events"])
+        split = profile_split(cmd[:-1] + [out + "_perf"])
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    return {"Np": np_, "N_b": nb, "realizations": realizations, "end": end,
+            "cpu_s_per_realization": r["cpu_s"] / realizations,
+            "events_per_realization": sum(events) / len(events), "profile": split}
 
 
 def tau_independence(sadr, np_=17, nb=1e3, taus=(0.0125, 0.05, 0.2), end=1.0, seed=2019):

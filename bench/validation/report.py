@@ -56,6 +56,7 @@ import coupled_tracer  # noqa: E402
 import poiseuille_example  # noqa: E402
 import poiseuille_sweep  # noqa: E402
 import splitting_order  # noqa: E402
+import table1_floor  # noqa: E402
 import wp_plots  # noqa: E402
 
 # drawert2019 Table 1 and the paper code's cost on this machine type (issue #20).
@@ -170,6 +171,10 @@ def main():
                     help="Table 1 SSA cases N:N_b:R:t_end,... instead of the mode's")
     ap.add_argument("--reuse", default="",
                     help="a data.json of an earlier run: take its gtest results (same commit!)")
+    ap.add_argument("--table1", action="store_true",
+                    help="with --quick or --full: run only Table 1's SSA part (the ensembles, tau "
+                         "and table1_floor.py) and take every other section from OUT/validation/"
+                         "data.json of the last whole run, which the header names")
     a = ap.parse_args()
     only = set(filter(None, a.only.split(",")))
     build = pathlib.Path(a.build).resolve()
@@ -187,6 +192,9 @@ def main():
     def step(msg):
         print(f"[{datetime.datetime.now():%H:%M:%S}] {msg}", flush=True)
 
+    if a.table1:
+        table1_only(a, data, figs, sadr, rev, cmd, started, build, quick, step)
+        return
     reuse = json.loads(pathlib.Path(a.reuse).read_text()).get("gtests", {}) if a.reuse else {}
     for gid, binary, flt, in_quick, *_ in GTESTS:
         if (only and gid not in only) or (not only and quick and not in_quick):
@@ -204,24 +212,7 @@ def main():
     # Table 1 SSA: one ensemble per (N, N_b); the error of the first r realizations.
     # (N, N_b, R, end): t = 1 s is the paper code's 10,000 steps of 1e-4 s (its quoted cost);
     # t = 4 s is steady (the t = inf reference).
-    ssa_cases = QUICK_SSA_CASES if quick else FULL_SSA_CASES
-    if a.ssa:
-        ssa_cases = [(int(n), float(nb), int(r), float(t)) for n, nb, r, t in
-                     (c.split(":") for c in a.ssa.split(","))]
-    step(f"projected CPU time of the Table 1 SSA cases: {projected_cpu_s(ssa_cases) / 3600:.1f} h "
-         "(SSA_COST_PER_REALIZATION)")
-    data["ssa_projection"] = {
-        "per_realization": [[n, nb, v] for (n, nb), v in sorted(SSA_COST_PER_REALIZATION.items())],
-        "full_cpu_h": projected_cpu_s(FULL_SSA_CASES) / 3600}
-    data["ssa"] = []
-    for np_, nb, r, end in ssa_cases:
-        step(f"Table 1 SSA N={np_} N_b={nb:g} R={r} t={end:g}")
-        res = annihilation_table1.realization_errors(str(sadr), np_, nb, r, end=end)
-        res["errors"] = {int(k): v for k, v in res["errors"].items()}
-        data["ssa"].append(res)
-
-    step("Table 1 SSA: coupling step tau")
-    data["table1_tau"] = annihilation_table1.tau_independence(str(sadr))
+    table1_ssa(a, data, sadr, quick, step)
 
     step("poiseuille sweep (resolution x sound speed, sadr sweep)")
     data["poiseuille_sweep"] = poiseuille_sweep.run(
@@ -256,6 +247,55 @@ def main():
     write_markdown(out / "validation.md", data, plots, cmd, rev, started, elapsed, build, quick)
     (figs / "data.json").write_text(json.dumps(data, indent=1, default=str) + "\n")
     step(f"wrote {out / 'validation.md'} in {elapsed / 60:.1f} min")
+
+
+def table1_ssa(a, data, sadr, quick, step):
+    """Table 1's SSA part: the ensembles, where tau matters, and what sets the cost."""
+    ssa_cases = QUICK_SSA_CASES if quick else FULL_SSA_CASES
+    if a.ssa:
+        ssa_cases = [(int(n), float(nb), int(r), float(t)) for n, nb, r, t in
+                     (c.split(":") for c in a.ssa.split(","))]
+    step(f"projected CPU time of the Table 1 SSA cases: {projected_cpu_s(ssa_cases) / 3600:.1f} h "
+         "(SSA_COST_PER_REALIZATION)")
+    data["ssa_projection"] = {
+        "per_realization": [[n, nb, v] for (n, nb), v in sorted(SSA_COST_PER_REALIZATION.items())],
+        "full_cpu_h": projected_cpu_s(FULL_SSA_CASES) / 3600}
+    data["ssa"] = []
+    for np_, nb, r, end in ssa_cases:
+        step(f"Table 1 SSA N={np_} N_b={nb:g} R={r} t={end:g}")
+        res = annihilation_table1.realization_errors(str(sadr), np_, nb, r, end=end)
+        res["errors"] = {int(k): v for k, v in res["errors"].items()}
+        data["ssa"].append(res)
+
+    step("Table 1 SSA: coupling step tau")
+    data["table1_tau"] = annihilation_table1.tau_independence(str(sadr))
+
+    step("Table 1 SSA: fixed cost per realization, events, profile (table1_floor.py)")
+    data["table1_split"] = table1_floor.measure(sadr)
+
+
+def table1_only(a, data, figs, sadr, rev, cmd, started, build, quick, step):
+    """--table1: Table 1's SSA part now, the other sections from the last whole run."""
+    old = json.loads((figs / "data.json").read_text())
+    for k, v in old.items():
+        if k not in ("ssa", "table1_tau", "table1_split", "ssa_projection"):
+            data[k] = v
+    data["commit"], data["mode"] = old["commit"], old["mode"]
+    data["table1_commit"] = rev
+    table1_ssa(a, data, sadr, quick, step)
+    step("plots")
+    plots = wp_plots.make_all(data, figs, PAPER_SDPD, PAPER_SSA, PAPER_SSA_ONE, PAPER_COST_ONE)
+    elapsed = (datetime.datetime.now(datetime.timezone.utc) - started).total_seconds()
+    data["table1_run"] = {"command": cmd + " --table1", "commit": rev,
+                          "utc": f"{started:%Y-%m-%d %H:%M}", "minutes": elapsed / 60}
+    # The header keeps the whole run's command, commit, date and duration.
+    hdr = re.search(r"Generated by `([^`]+)` at commit `(\S+)` on (\S+ \S+) UTC in ([\d.]+) min",
+                    (figs.parent / "validation.md").read_text())
+    whole = datetime.datetime.strptime(hdr[3], "%Y-%m-%d %H:%M")
+    write_markdown(figs.parent / "validation.md", data, plots, hdr[1], hdr[2], whole,
+                   60 * float(hdr[4]), build, old["mode"] == "quick")
+    (figs / "data.json").write_text(json.dumps(data, indent=1, default=str) + "\n")
+    step(f"wrote {figs.parent / 'validation.md'} (Table 1 SSA part) in {elapsed / 60:.1f} min")
 
 
 def write_markdown(path, d, plots, cmd, rev, started, elapsed, build, quick):

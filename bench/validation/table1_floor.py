@@ -1,0 +1,99 @@
+# SPDX-License-Identifier: MIT
+"""What sets the cost of Table 1's SSA column at equal error, measured (issue #20).
+
+For an exact SSA the noise of the mean of r realizations at N_b molecules per boundary
+particle scales like 1/sqrt(r N_b), and the events like r N_b. So
+    sigma_1 sqrt(events per realization)
+is an invariant of the scene (N, t), and the events needed for an error E are
+    n_E = events per realization x (sigma_1 / E)^2,
+whatever r and N_b are chosen. The cost at equal error is then
+    fixed cost of one realization + n_E x (ns per event),
+with one realization at the N_b that gives E (more realizations only add fixed costs).
+`measure` runs the fixed cost (N_b = 0: no molecules) and a profile per N; `render` writes
+the markdown from the SSA ensembles of report.py and these measurements.
+"""
+import annihilation_table1
+
+SPLIT_CASES = [(17, 0, 10), (33, 0, 10), (65, 0, 10), (17, 1e3, 10), (33, 1e3, 4), (65, 1e3, 2)]
+
+
+def measure(sadr, cases=SPLIT_CASES):
+    return [annihilation_table1.cost_split(str(sadr), n, nb, r) for n, nb, r in cases]
+
+
+def e(x):
+    return f"{x:.2e}"
+
+
+def floor_rows(d, paper_ssa, paper_ssa_one, paper_cost_one):
+    """One row per SSA ensemble at t = 1 that recorded its events."""
+    fixed = {s["Np"]: s["cpu_s_per_realization"] for s in d.get("table1_split", [])
+             if s["N_b"] == 0}
+    rows = []
+    for c in d["ssa"]:
+        n = c["Np"]
+        if c["end"] != 1.0 or "events_per_realization" not in c or n not in fixed:
+            continue
+        cpu = c["cpu_s"] / c["realizations"]
+        ev = c["events_per_realization"]
+        ns = 1e9 * (cpu - fixed[n]) / ev
+        s1 = c["noise"][1]
+        row = {"N": n, "N_b": c["N_b"], "events": ev, "cpu": cpu, "fixed": fixed[n], "ns": ns,
+               "sigma1": s1, "invariant": s1 * ev ** 0.5, "targets": []}
+        for label, target, pc in (("R=1", paper_ssa_one[n], paper_cost_one[n]),
+                                  ("R=100", paper_ssa[n], 100 * paper_cost_one[n])):
+            need = ev * (s1 / target) ** 2
+            best = fixed[n] + need * 1e-9 * ns
+            row["targets"].append({"label": label, "E": target, "paper_cost": pc,
+                                   "events_needed": need, "best_cost": best,
+                                   "ratio": pc / best, "ratio_nsm_only": pc / (need * 1e-9 * ns),
+                                   "ns_for_10x": (pc / 10 - fixed[n]) / need * 1e9})
+        rows.append(row)
+    return rows
+
+
+def render(d, paper_ssa, paper_ssa_one, paper_cost_one):
+    split = d.get("table1_split")
+    if not split:
+        return []
+    L = ["## Table 1 SSA: what sets the cost at equal error\n",
+         "Measured (`bench/validation/table1_floor.py`, called by report.py): the fixed cost of "
+         "a realization is `sadr run -r R` of the same scene with N_b = 0 (no molecules: process "
+         "start of ssa_service, its Init and graph, the orchestration, the two frames); events "
+         "per realization are `ssa_events` of each realization's run.json (reactions + diffusion "
+         "jumps); ns per event = (CPU per realization - fixed) / events; sigma_1 is the noise "
+         "level of one realization (from the ensemble's variance). For an exact SSA "
+         "sigma_1 sqrt(events) does not depend on N_b (column 8: compare the N_b rows of one N), "
+         "so the events needed for the paper's error E are events x (sigma_1/E)^2 whatever r and "
+         "N_b, and the cheapest cost is one realization at the N_b that gives E: fixed + events "
+         "needed x ns/event.\n",
+         "| N | N_b | events per realization | CPU s per realization | of which fixed | ns per event "
+         "| sigma_1 | sigma_1 sqrt(events) | paper error E | events needed for E | best cost [s] "
+         "| paper cost [s] | best ratio (NSM alone) | ns/event for 10x |",
+         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in floor_rows(d, paper_ssa, paper_ssa_one, paper_cost_one):
+        for t in r["targets"]:
+            ns10 = t["ns_for_10x"]
+            L.append(f"| {r['N']} | {r['N_b']:g} | {r['events']:.3g} | {r['cpu']:.4f} | "
+                     f"{r['fixed']:.4f} | {r['ns']:.0f} | {e(r['sigma1'])} | "
+                     f"{r['invariant']:.3g} | {e(t['E'])} ({t['label']}) | "
+                     f"{t['events_needed']:.3g} | {t['best_cost']:.3g} | {t['paper_cost']:g} | "
+                     f"**{t['ratio']:.3g}x** ({t['ratio_nsm_only']:.3g}x) | "
+                     f"{'-' if ns10 <= 0 else f'{ns10:.0f}'} |")
+    L.append("")
+    prof = [s for s in split if s.get("profile")]
+    if prof:
+        groups = list(prof[0]["profile"])
+        L.append("Where a realization's CPU goes (`perf record` of the whole process tree, "
+                 "`annihilation_table1.profile_split`; ms per realization = share x CPU per "
+                 "realization of an unprofiled run):\n")
+        L.append("| N | N_b | R | CPU ms per realization | "
+                 + " | ".join(groups) + " |")
+        L.append("|---|---|---|---|" + "---|" * len(groups))
+        for s in prof:
+            ms = 1e3 * s["cpu_s_per_realization"]
+            L.append(f"| {s['Np']} | {s['N_b']:g} | {s['realizations']} | {ms:.1f} | "
+                     + " | ".join(f"{ms * s['profile'][g]:.1f} ({100 * s['profile'][g]:.0f} %)"
+                                  for g in groups) + " |")
+        L.append("")
+    return L
