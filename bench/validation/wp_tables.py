@@ -261,5 +261,6 @@ def render(d, plots, cmd, rev, started, elapsed, build, quick, paper_sdpd, paper
               f"{e(c['noise'][r])} (error {e(c['errors'][r])}); the paper used R = 100 at "
               "N_b = 1e4. More realizations, at the cost per realization in the table above, "
               "close the gap.")
+    L += table1_floor.closing(d, paper_ssa, paper_ssa_one, paper_cost_one)
     w("")
     return "\n".join(L) + "\n"
