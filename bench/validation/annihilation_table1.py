@@ -69,14 +69,29 @@ def reference(refs, np_, nb, t="inf"):
     return [float(r["uA"]) for r in rows]
 
 
+def run_ensemble(sadr, work, np_, nb, realizations, end, seed):
+    """Writes the Table 1 scene into `work` and runs `sadr run -r R` of it (CPU time by
+    os.wait4); returns the measurement and the folder of each realization."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from measure import run_measured
+    scene = os.path.join(work, "scene.yaml")
+    with open(scene, "w") as f:
+        f.write(SCENE.format(np=np_, dx=1.0 / (np_ - 1), nb=int(nb), end=end, seed=seed))
+    out = os.path.join(work, "out")
+    r = run_measured([sadr, "run", scene, "-r", str(realizations), "-q", "-o", out])
+    if r["rc"]:
+        sys.exit(f"sadr run failed (exit {r['rc']}) for Np={np_}, N_b={nb}")
+    # sadr run -r 1 writes its one run into out/ itself
+    return r, [os.path.join(out, f"realization_{k:04d}" if realizations > 1 else "")
+               for k in range(realizations)]
+
+
 def realization_errors(sadr, np_, nb, realizations, end=4.0, seed=2019, refs_path=None,
                        subsets=(2, 3, 5, 10, 20, 30, 50, 100)):
     """One `sadr run -r R` of the Table 1 scene; returns the paper metric of the
     ensemble mean over the first r realizations for each r in `subsets` (<= R),
     of one realization (r = 1), the CPU time of the whole run (sadr + services,
     os.wait4) and the number of realizations."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    from measure import run_measured
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     refs = [] if refs_path is None else read_rows(refs_path)
     for name in ("annihilation_1d_subset.csv", "annihilation_1d_nb100_subset.csv"):
@@ -86,17 +101,9 @@ def realization_errors(sadr, np_, nb, realizations, end=4.0, seed=2019, refs_pat
     ref = reference(refs, np_, nb, "inf" if end >= 4.0 else end)
     work = tempfile.mkdtemp(prefix=f"sadr-table1-{np_}-")
     try:
-        scene = os.path.join(work, "scene.yaml")
-        with open(scene, "w") as f:
-            f.write(SCENE.format(np=np_, dx=1.0 / (np_ - 1), nb=int(nb), end=end, seed=seed))
-        out = os.path.join(work, "out")
-        r = run_measured([sadr, "run", scene, "-r", str(realizations), "-q", "-o", out])
-        if r["rc"]:
-            sys.exit(f"sadr run failed (exit {r['rc']}) for Np={np_}")
+        r, run_dirs = run_ensemble(sadr, work, np_, nb, realizations, end, seed)
         finals, events = [], []
-        for k in range(realizations):
-            # sadr run -r 1 writes one run into out/ itself
-            run_dir = os.path.join(out, f"realization_{k:04d}" if realizations > 1 else "")
+        for run_dir in run_dirs:
             frames = os.path.join(run_dir, "frames")
             rows = read_rows(os.path.join(frames, sorted(os.listdir(frames))[-1]))
             rows.sort(key=lambda row: int(row["id"]))
@@ -172,23 +179,15 @@ def cost_split(sadr, np_, nb, realizations, end=1.0, seed=2019):
     (N_b = 0: no molecules, the fixed cost of a realization), CPU per realization and events
     per realization from each run.json, and, where perf exists, the split of a second,
     profiled run over PROFILE_GROUPS."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    from measure import run_measured
     work = tempfile.mkdtemp(prefix=f"sadr-table1-split-{np_}-")
     try:
-        scene = os.path.join(work, "scene.yaml")
-        with open(scene, "w") as f:
-            f.write(SCENE.format(np=np_, dx=1.0 / (np_ - 1), nb=int(nb), end=end, seed=seed))
-        out = os.path.join(work, "out")
-        cmd = [sadr, "run", scene, "-r", str(realizations), "-q", "-o", out]
-        r = run_measured(cmd)
-        if r["rc"]:
-            sys.exit(f"sadr run failed (exit {r['rc']}) for Np={np_}, N_b={nb}")
+        r, run_dirs = run_ensemble(sadr, work, np_, nb, realizations, end, seed)
         events = []
-        for k in range(realizations):
-            with open(os.path.join(out, f"realization_{k:04d}", "run.json")) as f:
+        for run_dir in run_dirs:
+            with open(os.path.join(run_dir, "run.json")) as f:
                 events.append(json.load(f)["ssa_events"])
-        split = profile_split(cmd[:-1] + [out + "_perf"])
+        split = profile_split([sadr, "run", os.path.join(work, "scene.yaml"), "-r",
+                               str(realizations), "-q", "-o", os.path.join(work, "out_perf")])
     finally:
         shutil.rmtree(work, ignore_errors=True)
     return {"Np": np_, "N_b": nb, "realizations": realizations, "end": end,
