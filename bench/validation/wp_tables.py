@@ -162,7 +162,7 @@ def render(d, plots, cmd, rev, started, elapsed, build, quick, paper_sdpd, paper
 
     L += wp_sweeps.poiseuille(d, rev)
     L += wp_sweeps.coupled(d, rev)
-    L += wp_sweeps.table1_tau(d, rev)
+    L += wp_sweeps.table1_tau(d, d.get("table1_run", {}).get("commit", rev))
 
     # Splitting order.
     sp = d.get("splitting")
