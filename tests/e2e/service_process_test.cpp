@@ -84,14 +84,14 @@ TEST_P(ServiceE2E, SsaHandshakeRunSnapshotRestore) {
   const auto init = ssa.init(chain_init(17, 7));
   EXPECT_GT(init.edges(), 0u);
   ssa.set_run_id("e2e");
-  const SsaStep r0 = ssa.advance(0, 0.5, {}, {"A"});
+  const SsaStep r0 = ssa.advance(0, 0.5, {}, {"A"}, {});
   EXPECT_GT(r0.events, 0u);
   EXPECT_DOUBLE_EQ(r0.time, 0.5);
   // The copy numbers asked for come back with the step (the back-transfer).
   ASSERT_EQ(r0.counts.names, std::vector<std::string>{"A"});
   EXPECT_EQ(r0.counts.values[0], ssa.counts({"A"}).values[0]);
   // A resent step is not stepped again (idempotent retry).
-  const SsaStep again = ssa.advance(0, 0.5, {}, {"A"});
+  const SsaStep again = ssa.advance(0, 0.5, {}, {"A"}, {});
   EXPECT_EQ(again.events, r0.events);
   EXPECT_EQ(again.counts.values, r0.counts.values);
 
@@ -99,16 +99,16 @@ TEST_P(ServiceE2E, SsaHandshakeRunSnapshotRestore) {
   common::v1::Snapshot snap;
   ASSERT_TRUE(snap.ParseFromString(snap_bytes));
   EXPECT_EQ(snap.format(), "sadr.ssa.nsm");
-  ssa.advance(1, 1.0, {}, {});
+  ssa.advance(1, 1.0, {}, {}, {});
   const SpeciesCounts first = ssa.counts({});
   ssa.restore(snap_bytes);
-  ssa.advance(2, 1.0, {}, {});  // a new step index: the restored run continues
+  ssa.advance(2, 1.0, {}, {}, {});  // a new step index: the restored run continues
   const SpeciesCounts second = ssa.counts({});
   ASSERT_EQ(first.names.size(), 1u);
   EXPECT_EQ(first.values[0].size(), 17u);
   EXPECT_EQ(first.values, second.values) << "restored run must continue bit-identically";
   try {
-    ssa.advance(3, 1.5, {}, {"Q"});
+    ssa.advance(3, 1.5, {}, {"Q"}, {});
     FAIL() << "an unknown species in return_counts must be refused";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("advance.return_counts[0]: unknown stochastic species "
@@ -170,7 +170,7 @@ TEST_P(ServiceE2E, BadInputIsReportedWithTheFieldAndTheServiceSurvives) {
         << e.what();
   }
   try {
-    ssa.advance(0, 1.0, {}, {});
+    ssa.advance(0, 1.0, {}, {}, {});
     FAIL();
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), StatusCode::kFailedPrecondition);
@@ -215,7 +215,7 @@ TEST_P(ServiceE2E, FluidServiceStaticBackendOverTheWire) {
   m->set_sound_speed(1.0);
   const auto rep = fluid.init(init);
   fluid.set_run_id("e2e");
-  const FluidStep a = fluid.advance(0, 0.1, false, {});
+  const FluidStep a = fluid.advance(0, 0.1, false, {}, {});
   EXPECT_FALSE(a.particles_moved);
   EXPECT_NEAR(a.time, 0.1, 1e-15);
   const FluidFrame st = fluid.frame({});
@@ -264,7 +264,7 @@ TEST_P(ServiceE2E, FluidSetsBackTransferredCountsOverItsOwnVolumes) {
   SpeciesCounts counts;
   counts.names = {"B"};
   counts.values = {{0, 1, 2, 3, 5, 8, 13, 21}};
-  fluid.advance(0, 0.1, false, counts);
+  fluid.advance(0, 0.1, false, counts, {});
   const FluidFrame f = fluid.frame({"B"});
   ASSERT_EQ(f.concentrations.size(), 1u);
   const auto& c = f.concentrations[0].second;
@@ -275,7 +275,7 @@ TEST_P(ServiceE2E, FluidSetsBackTransferredCountsOverItsOwnVolumes) {
   EXPECT_NE(f.particles.volume(0), f.particles.volume(7));
   counts.values[0].pop_back();
   try {
-    fluid.advance(1, 0.1, false, counts);
+    fluid.advance(1, 0.1, false, counts, {});
     FAIL() << "a count per particle is required";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("advance.counts.species[0] has 7 counts, expected 8"),

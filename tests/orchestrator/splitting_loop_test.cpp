@@ -59,9 +59,11 @@ class FakeFluid final : public FluidService {
  public:
   explicit FakeFluid(CallLog& log, bool moves = true) : log_(log), moves_(moves) {}
   FluidStep advance(std::uint64_t step_index, double dt, bool want_geometry,
-                    const SpeciesCounts& counts) override {
+                    const SpeciesCounts& counts,
+                    const std::vector<std::string>& return_concentrations) override {
     FluidStep r;
     t_ += dt;
+    for (const auto& name : return_concentrations) r.concentrations.push_back({name, {t_}});
     r.time = t_;
     r.substeps = 2;
     r.particles_moved = moves_;
@@ -90,10 +92,14 @@ class FakeSsa final : public SsaService {
  public:
   explicit FakeSsa(CallLog& log) : log_(log) {}
   SsaStep advance(std::uint64_t step_index, double t_end, Geometry geometry,
-                  const std::vector<std::string>& return_counts) override {
+                  const std::vector<std::string>& return_counts,
+                  const SpeciesConcentrations& frozen) override {
     if (before_advance) before_advance(step_index);
+    std::string inputs;
+    for (const auto& [name, values] : frozen) inputs += fmt(" %s=%g", name.c_str(), values.at(0));
     log_.add(fmt("ssa %llu t_end=%.17g geometry=%llu", static_cast<unsigned long long>(step_index),
-                 t_end, static_cast<unsigned long long>(geometry.generation())));
+                 t_end, static_cast<unsigned long long>(geometry.generation())) +
+             inputs);
     SsaStep r;
     r.time = t_end;
     for (const auto& name : return_counts) {
@@ -232,6 +238,35 @@ TEST(SplittingLoop, BackTransferSendsTheLastSsaCountsWithEveryFluidStage) {
   ASSERT_GE(log.calls.size(), 2u);
   EXPECT_EQ(log.calls[0], "ssa counts");
   EXPECT_EQ(log.calls[1], "fluid 4 dt=0.25 geometry=0 B=7");
+}
+
+TEST(SplittingLoop, HybridFrozenConcentrationsGoFromTheFluidStageToTheNextSsaStage) {
+  // Strang: only the half step just before an SSA stage returns them (the fake's
+  // concentration is its clock, so each SSA stage shows which fluid stage fed it).
+  CallLog log;
+  FakeFluid fluid(log, /*moves=*/false);
+  FakeSsa ssa(log);
+  RunManifest stats;
+  LoopSettings s = lie(0.5, 1.0);
+  s.splitting = Splitting::kStrang;
+  s.fluid_calls_per_step = 2;
+  s.geometry_each_step = false;
+  s.frozen = {"B"};
+  SplittingLoop loop(&fluid, &ssa, s, stats);
+  loop.run({});
+  const std::vector<std::string> want = {"ssa 0 t_end=0.5 geometry=0 B=0.25",
+                                         "ssa 1 t_end=1 geometry=0 B=0.75"};
+  EXPECT_EQ(log.of('s'), want);
+  // Lie: the SSA stage of step k holds the concentrations at the end of fluid stage k.
+  log.calls.clear();
+  FakeFluid lie_fluid(log, /*moves=*/false);
+  LoopSettings l = lie(0.5, 1.0);
+  l.frozen = {"B"};
+  SplittingLoop lie_loop(&lie_fluid, &ssa, l, stats);
+  lie_loop.run({});
+  const std::vector<std::string> want_lie = {"ssa 0 t_end=0.5 geometry=0 B=0.5",
+                                             "ssa 1 t_end=1 geometry=0 B=1"};
+  EXPECT_EQ(log.of('s'), want_lie);
 }
 
 TEST(SplittingLoop, CheckpointsFollowTheCadenceAndStopAtStopsAfterOne) {

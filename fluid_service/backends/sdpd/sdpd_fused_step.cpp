@@ -51,6 +51,7 @@ double SdpdBackend::fused_substep(std::uint64_t step_index, std::uint64_t key, d
   // --- first force evaluation (y_, with noise), limits, predictor (also: hin_ for ytmp_, the
   // list displacement check of the predicted positions)
   slabs_.next_pass();
+  species_.set_time(time_);  // the laws of t: at the time of each evaluation
 #pragma omp parallel if (ni > kMinParallel)
   {
     FusedPartial& pt = fused_partials_[static_cast<std::size_t>(thread_index())];
@@ -128,6 +129,7 @@ double SdpdBackend::fused_substep(std::uint64_t step_index, std::uint64_t key, d
     }
   }  // omp parallel
   if (error) std::rethrow_exception(error);
+  species_.set_time(time_ + dt);
   const double sdt = std::sqrt(dt);
   for (std::size_t s = 0; s < y_.c.size(); ++s) {
     ytmp_.c[s] = y_.c[s];

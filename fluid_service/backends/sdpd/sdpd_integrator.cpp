@@ -71,6 +71,7 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
                                     std::uint32_t sub, StepReport& rep) {
   const std::size_t n = mass_.size();
   const int dim = model_.box.dimension;
+  species_.set_time(time_);  // the laws of t: at the time of each evaluation
   evaluate(y_, key, r0_, true);
   // (not a structured binding: clang 14 cannot use one in the OpenMP regions below)
   const Substep next = next_substep(limits(y_, r0_), model_.max_time_step, model_.force_time_step,
@@ -112,6 +113,7 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
     if (!model_.species[s].deterministic) continue;
     for (std::size_t i = 0; i < n; ++i) ytmp_.c[s][i] += dt * r0_.dc[s][i];
   }
+  species_.set_time(time_ + dt);
   evaluate(ytmp_, key, r1_, false);  // noise: the start-of-step force is reused
   // Corrector: Y = Y + dt/2 (f(Y) + f(Y~)), same noise increment.
 #pragma omp parallel for schedule(static) if (ni > kMinParallelLight)

@@ -154,6 +154,7 @@ StepReport TdpdBackend::step(std::uint64_t step_index, double time_step) {
   v_pred_.resize(3 * n_);
   for (std::uint32_t k = 0; k < nsub; ++k) {
     const std::uint64_t key = (step_index << 16) + k;  // < 2^48 for step_index < 2^32
+    species_.set_time(time_);  // the laws of t: at the time of each evaluation
     if (!have_forces_) {
       evaluate(x_, v_, c_, key | kInitialEval, dt, f_, q_);
       have_forces_ = true;
@@ -189,6 +190,7 @@ StepReport TdpdBackend::step(std::uint64_t step_index, double time_step) {
       walls_.relax_dirichlet(x_, wall_, transported, kappa_, dt, c_);
     }
     if (buffers_.enabled()) buffers_.apply(x_, transported, c_);
+    species_.set_time(time_ + dt);
     evaluate(x_, v_pred_, c_, key, dt, f_new_, q_new_);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelLight)
     for (std::int64_t ii = 0; ii < n; ++ii) {

@@ -97,9 +97,15 @@ std::uint32_t SpeciesOperator::advance(std::string_view backend, const ParticleS
                                        double& time, StepReport& rep) {
   const std::size_t n = state.size();
   if (ctmp_.size() != c.size() || (!c.empty() && ctmp_[0].size() != n)) reset_scratch(c);
+  // Species held here (stochastic ones a hybrid law reads, X / V from the back-transfer)
+  // are constant over the advance: the predictor stage reads them too.
+  for (std::size_t s = 0; s < c.size(); ++s) {
+    if (!model_.species[s].deterministic) ctmp_[s] = c[s];
+  }
   std::uint32_t sub = 0;
   double remaining = time_step;
   while (remaining > 0) {
+    species_.set_time(time);  // Heun: the laws of t at both ends of the sub-step
     const double dt = next_substep(limits(c, state), model_.max_time_step, model_.force_time_step,
                                    remaining, rep.stable_dt, rep.limiting_criterion)
                           .dt;
@@ -107,6 +113,7 @@ std::uint32_t SpeciesOperator::advance(std::string_view backend, const ParticleS
     for (const int s : species_.transported()) {
       for (std::size_t i = 0; i < n; ++i) ctmp_[s][i] = c[s][i] + dt * dc0_[s][i];
     }
+    species_.set_time(time + dt);
     rates(state, ctmp_, dc1_);
     for (const int s : species_.transported()) {
       for (std::size_t i = 0; i < n; ++i) {

@@ -71,7 +71,7 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
     cr.rate = re.rate;
     if (re.law) {
       cr.law = static_cast<int>(laws.size());
-      laws.emplace_back(*re.law, names, false);
+      laws.emplace_back(*re.law, names);
       widest = std::max(widest, laws.back().species().size());
     }
     // Sites: kinds (default fluid only) intersected with the optional particle list.
@@ -145,7 +145,7 @@ double SpeciesTransport::velocity(const CompiledReaction& r, std::size_t i,
     double* x = scratch_[thread].data();
     const std::vector<int>& sp = law.species();
     for (std::size_t k = 0; k < sp.size(); ++k) x[k] = c[sp[k]][i];
-    return law.density(x, 0.0);
+    return law.density(x, time_);
   }
   double v = r.rate;
   for (const auto& t : r.reactants) {
@@ -163,7 +163,7 @@ double SpeciesTransport::law_rate_scale(const CompiledReaction& r, std::size_t i
   const std::vector<int>& sp = law.species();
   for (std::size_t k = 0; k < sp.size(); ++k) x[k] = c[sp[k]][i];
   double grad = 0;
-  for (std::size_t k = 0; k < sp.size(); ++k) grad += std::fabs(law.derivative(x, 0.0, k));
+  for (std::size_t k = 0; k < sp.size(); ++k) grad += std::fabs(law.derivative(x, time_, k));
   double change = 0;
   for (const auto& [s, d] : r.delta) change += std::abs(d);
   return grad * change;

@@ -148,9 +148,21 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
     wire::geometry_to_proto(scratch_, *rep.mutable_particles());
     rep.mutable_particles()->set_time(b.time());
   };
+  // Hybrid reactions: the deterministic concentrations the next SSA stage holds frozen.
+  auto add_concentrations = [&] {
+    for (int k = 0; k < req.return_concentrations_size(); ++k) {
+      const int s = species(req.return_concentrations(k),
+                            "advance.return_concentrations[" + std::to_string(k) + "]");
+      auto* f = rep.mutable_concentrations()->add_species();
+      f->set_name(req.return_concentrations(k));
+      const auto& c = b.concentrations(s);
+      f->mutable_concentrations()->Assign(c.begin(), c.end());
+    }
+  };
   if (have_last_ && req.run_id() == last_run_id_ && req.step_index() == last_step_) {
     rep = last_reply_;
     add_state();
+    add_concentrations();
     return;
   }
   if (!(req.time_step() > 0)) {
@@ -175,6 +187,7 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
   last_reply_ = rep;
   have_last_ = true;
   add_state();
+  add_concentrations();
 }
 
 void FluidServiceHandler::apply_inflows() {

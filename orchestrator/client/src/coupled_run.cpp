@@ -32,6 +32,7 @@ LoopSettings loop_settings(const Scene& scene, const Plan& plan, const RunOption
   s.fluid_calls_per_step = plan.fluid_calls_per_step;
   s.geometry_each_step = plan.particles_to_ssa_each_step;
   if (plan.back_transfer) s.back_transfer = plan.back_transfer_species;
+  s.frozen = plan.frozen_species;
   s.overlap = plan.overlap && plan.overlap_allowed;
   s.frame_to_frame = plan.frame_to_frame;
   return s;

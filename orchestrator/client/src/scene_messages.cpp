@@ -177,6 +177,7 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
   for (const auto& r : scene.reactions) {
     if (r.stochastic) to_proto(r, *m->add_reactions(), regions_used);
   }
+  for (const auto& s : plan.frozen_species) m->add_frozen_species(s);
   add_regions(scene, regions_used, m->mutable_regions());
   wire::to_proto(particles, *init.mutable_particles(), /*with_velocities=*/false);
   return init;

@@ -67,7 +67,8 @@ fluid::v1::InitReply FluidClient::init(const fluid::v1::InitRequest& request) {
 }
 
 FluidStep FluidClient::advance(std::uint64_t step_index, double dt, bool want_geometry,
-                               const SpeciesCounts& counts) {
+                               const SpeciesCounts& counts,
+                               const std::vector<std::string>& return_concentrations) {
   fluid::v1::FluidRequest r;
   auto& req = *r.mutable_advance();
   req.set_run_id(run_id());
@@ -76,9 +77,14 @@ FluidStep FluidClient::advance(std::uint64_t step_index, double dt, bool want_ge
   req.set_return_state(want_geometry);
   if (want_geometry && channel_ && channel_->shared()) req.set_geometry_shm(channel_->segment());
   if (!counts.empty()) counts_to_proto(counts, *req.mutable_counts());
+  for (const auto& name : return_concentrations) req.add_return_concentrations(name);
   auto reply = call(r);
   auto& rep = *reply.mutable_advance();
   FluidStep step;
+  for (const auto& f : rep.concentrations().species()) {
+    step.concentrations.emplace_back(
+        f.name(), std::vector<double>(f.concentrations().begin(), f.concentrations().end()));
+  }
   step.time = rep.time();
   step.substeps = rep.substeps();
   step.particles_moved = rep.particles_moved();
@@ -125,7 +131,8 @@ ssa::v1::InitReply SsaClient::init(const ssa::v1::InitRequest& request) {
 }
 
 SsaStep SsaClient::advance(std::uint64_t step_index, double t_end, Geometry geometry,
-                           const std::vector<std::string>& return_counts) {
+                           const std::vector<std::string>& return_counts,
+                           const SpeciesConcentrations& frozen) {
   ssa::v1::SsaRequest r;
   auto& req = *r.mutable_advance();
   req.set_run_id(run_id());
@@ -144,6 +151,11 @@ SsaStep SsaClient::advance(std::uint64_t step_index, double t_end, Geometry geom
     *req.mutable_particles() = std::move(*geometry.arrays());
   }
   for (const auto& name : return_counts) req.add_return_counts(name);
+  for (const auto& [name, values] : frozen) {
+    auto* f = req.mutable_frozen()->add_species();
+    f->set_name(name);
+    f->mutable_concentrations()->Assign(values.begin(), values.end());
+  }
   auto reply = call(r);
   auto& rep = *reply.mutable_advance();
   // Both services have mapped the segment now.

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "sadr/common/log.hpp"
+#include "sadr/common/status.hpp"
 #include "scoped_timer.hpp"
 
 namespace sadr::orchestrator {
@@ -83,7 +84,8 @@ class SplittingLoop::Worker {
 struct SplittingLoop::SsaJob {
   std::uint64_t step_index = 0;
   double t_end = 0.0;
-  Geometry geometry;  ///< empty: the graph is kept
+  Geometry geometry;             ///< empty: the graph is kept
+  SpeciesConcentrations frozen;  ///< hybrid reactions' deterministic inputs (LoopSettings::frozen)
   double call_seconds = 0.0;
   SsaStep result;
 };
@@ -171,6 +173,8 @@ void SplittingLoop::step(const CouplingStep& cs, bool defer_ssa) {
   // The geometry the fluid stage just before an SSA stage returned (one round
   // trip: no separate geometry read).
   Geometry geometry;
+  SpeciesConcentrations frozen;  // the same fluid stage's concentrations (hybrid reactions)
+  static const std::vector<std::string> kNone;
   for (std::size_t k = 0; k < stages.size(); ++k) {
     const Stage& stage = stages[k];
     if (stage.op == Operator::kFluid) {
@@ -179,12 +183,14 @@ void SplittingLoop::step(const CouplingStep& cs, bool defer_ssa) {
       ScopedTimer timer(stats_.timings_s, "fluid");
       const bool want_geometry = ssa_ && s_.geometry_each_step && k + 1 < stages.size() &&
                                  stages[k + 1].op != Operator::kFluid;
-      FluidStep rep =
-          fluid_->advance(step_ * calls + fluid_call++, stage.length(), want_geometry, counts);
+      const bool before_ssa = ssa_ && k + 1 < stages.size() && stages[k + 1].op != Operator::kFluid;
+      FluidStep rep = fluid_->advance(step_ * calls + fluid_call++, stage.length(), want_geometry,
+                                      counts, before_ssa ? s_.frozen : kNone);
       stats_.timings_s["fluid_compute"] += rep.compute_seconds;
       stats_.fluid_substeps += rep.substeps;
       moved = rep.particles_moved || moved;
       geometry = std::move(rep.geometry);
+      if (before_ssa) frozen = std::move(rep.concentrations);
     } else {
       // The SSA stage of the previous step (overlapped with the fluid stage
       // just done) comes first: exposed time, the SSA not hidden by the fluid.
@@ -199,6 +205,14 @@ void SplittingLoop::step(const CouplingStep& cs, bool defer_ssa) {
         moved = false;
       }
       geometry = Geometry{};
+      if (!s_.frozen.empty() && frozen.size() != s_.frozen.size()) {
+        throw Error(StatusCode::kInternal,
+                    "coupling step " + std::to_string(step_) +
+                        ": the SSA stage needs the frozen concentrations of the hybrid "
+                        "reactions, but no fluid stage returned them just before it");
+      }
+      job->frozen = std::move(frozen);
+      frozen = {};
       if (defer_ssa && k + 1 == stages.size()) {
         pending_ = std::move(job);
         worker_->submit([this, j = pending_.get()] { run_ssa(*j); });
@@ -226,7 +240,8 @@ SpeciesCounts SplittingLoop::back_transfer_counts() {
 /// touches only ssa_ and the job).
 void SplittingLoop::run_ssa(SsaJob& job) {
   const auto t0 = Clock::now();
-  job.result = ssa_->advance(job.step_index, job.t_end, std::move(job.geometry), s_.back_transfer);
+  job.result = ssa_->advance(job.step_index, job.t_end, std::move(job.geometry), s_.back_transfer,
+                             job.frozen);
   job.call_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 }
 

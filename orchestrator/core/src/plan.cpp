@@ -34,6 +34,21 @@ Plan make_plan(const Scene& scene) {
     }
   }
   for (const auto& rx : scene.reactions) (rx.stochastic ? p.ssa_reactions : p.fluid_reactions)++;
+  // Hybrid reactions: which species cross which way (in the scene's species order).
+  std::vector<std::string> fluid_reads;
+  for (const auto& sp : scene.species) {
+    const auto reads = [&](bool stochastic_reaction) {
+      return std::any_of(scene.reactions.begin(), scene.reactions.end(), [&](const Reaction& rx) {
+        return rx.stochastic == stochastic_reaction &&
+               std::find(rx.reads_other.begin(), rx.reads_other.end(), sp.name) !=
+                   rx.reads_other.end();
+      });
+    };
+    if (!sp.stochastic && reads(true)) p.frozen_species.push_back(sp.name);
+    if (sp.stochastic && reads(false)) fluid_reads.push_back(sp.name);
+  }
+  p.ssa_time_laws = std::any_of(scene.reactions.begin(), scene.reactions.end(),
+                                [](const Reaction& rx) { return rx.stochastic && rx.uses_time; });
 
   p.ssa_service = !p.ssa_species.empty();
   if (!p.ssa_service) p.skipped.push_back("ssa_service: not launched (no stochastic species)");
@@ -64,6 +79,13 @@ Plan make_plan(const Scene& scene) {
       p.back_transfer_species.push_back(b->species);
     }
   }
+  for (const auto& s : fluid_reads) {
+    if (std::find(p.back_transfer_species.begin(), p.back_transfer_species.end(), s) ==
+        p.back_transfer_species.end()) {
+      p.back_transfer_species.push_back(s);
+    }
+    p.back_transfer = p.ssa_service;
+  }
   if (p.ssa_service && !p.back_transfer) {
     p.skipped.push_back(
         "back-transfer ssa -> fluid: none (no fluid term depends on a "
@@ -91,7 +113,8 @@ Plan make_plan(const Scene& scene) {
              });
     });
   };
-  p.frame_to_frame = p.ssa_service && !p.fluid_service && !reset_between_calls();
+  p.frame_to_frame =
+      p.ssa_service && !p.fluid_service && !reset_between_calls() && !p.ssa_time_laws;
   if (p.frame_to_frame) {
     p.skipped.push_back("coupling step (" + format_number(scene.time.coupling_step) +
                         "): nothing moves; SSA advances frame to frame (to each output, "
@@ -156,6 +179,15 @@ std::vector<std::string> Plan::lines() const {
   out.push_back(std::string("thermal noise: ") + (thermal_noise ? "on" : "off"));
   out.push_back("back-transfer ssa -> fluid: " +
                 (back_transfer ? join(back_transfer_species) : std::string("off")));
+  if (!frozen_species.empty()) {
+    out.push_back("hybrid fluid -> ssa: " + join(frozen_species) +
+                  " (concentrations after each fluid stage, frozen over the SSA stage)");
+  }
+  if (ssa_time_laws) {
+    out.push_back(
+        "ssa laws of t: t held at each SSA stage's start (first order in the "
+        "coupling step)");
+  }
   out.push_back(std::string("overlap ssa step k || fluid step k+1: ") + (overlap ? "on" : "off") +
                 " (" + overlap_reason + ")");
   for (const auto& s : skipped) out.push_back("skipped: " + s);
@@ -163,7 +195,7 @@ std::vector<std::string> Plan::lines() const {
 }
 
 nlohmann::json Plan::to_json() const {
-  return nlohmann::json{
+  nlohmann::json j{
       {"fluid_backend", fluid_backend},
       {"fluid_service", fluid_service},
       {"fluid_stepping", fluid_stepping},
@@ -178,12 +210,16 @@ nlohmann::json Plan::to_json() const {
       {"fluid_species", fluid_species},
       {"ssa_species", ssa_species},
       {"back_transfer_species", back_transfer_species},
+
       {"fluid_reactions", fluid_reactions},
       {"ssa_reactions", ssa_reactions},
       {"skipped", skipped},
       {"overlap", overlap},
       {"overlap_reason", overlap_reason},
   };
+  if (!frozen_species.empty()) j["frozen_species"] = frozen_species;  // hybrid scenes only
+  if (ssa_time_laws) j["ssa_time_laws"] = true;
+  return j;
 }
 
 }  // namespace sadr::orchestrator

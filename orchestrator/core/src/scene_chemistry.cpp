@@ -376,7 +376,10 @@ std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where
             where, "mixes " + std::string(*stochastic ? "stochastic" : "deterministic") +
                        " species '" + first_name + "' with " +
                        (sp->stochastic ? "stochastic" : "deterministic") + " species '" + sp->name +
-                       "'; a reaction runs either in the SSA or in the fluid");
+                       "'; a reaction changes the species of one path only (it fires in the "
+                       "SSA or in the fluid): split it into one reaction per path, or leave the "
+                       "species it does not change out of the equation and read it in a 'law' "
+                       "(a hybrid reaction, docs/method.md section 4c)");
         ok = false;
       }
     }

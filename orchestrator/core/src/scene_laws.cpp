@@ -250,19 +250,13 @@ bool read_law(SceneContext& ctx, const Field& reaction, Reaction& rx) {
   std::vector<std::string> names;
   for (const auto& sp : ctx.scene.species) names.push_back(sp.name);
   try {
-    const rate_law::RateLaw law(d, names, false);
-    for (const int s : law.species()) {
-      const Species* sp = ctx.scene.find_species(names[s]);
-      if (sp->stochastic != rx.stochastic) {
-        r.error(f, "reads the " + std::string(sp->stochastic ? "stochastic" : "deterministic") +
-                       " species '" + sp->name + "' in a reaction of " +
-                       (rx.stochastic ? "stochastic" : "deterministic") +
-                       " species; a law reads species of its own path only (hybrid "
-                       "reactions are not built)");
-        return true;
-      }
-    }
+    const rate_law::RateLaw law(d, names);
     law.check_admissible({});
+    rx.uses_time = law.uses_time();
+    for (const int s : law.species()) {  // hybrid: species of the other path are read only
+      const Species* sp = ctx.scene.find_species(names[s]);
+      if (sp->stochastic != rx.stochastic) rx.reads_other.push_back(sp->name);
+    }
   } catch (const InvalidArgument& e) {
     r.error(f, e.what());
     return true;

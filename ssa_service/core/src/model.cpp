@@ -42,6 +42,12 @@ void Model::validate() const {
   const std::size_t ns = species.size();
   if (ns == 0) issues.emplace_back("species: empty (at least one species is required)");
   std::set<std::string> names;
+  for (std::size_t k = 0; k < frozen_species.size(); ++k) {
+    if (frozen_species[k].empty() || !names.insert(frozen_species[k]).second) {
+      issues.push_back("frozen_species[" + std::to_string(k) + "] = '" + frozen_species[k] +
+                       "' is empty or a duplicate");
+    }
+  }
   for (std::size_t s = 0; s < ns; ++s) {
     const std::string f = "species[" + std::to_string(s) + "]";
     if (species[s].name.empty()) issues.push_back(f + ".name is empty");
@@ -77,7 +83,7 @@ void Model::validate() const {
     }
     if (rx.law) {
       try {
-        (void)rate_law::RateLaw(*rx.law, species_names(), false);
+        (void)rate_law::RateLaw(*rx.law, law_names());
       } catch (const InvalidArgument& e) {
         issues.push_back(f + ".law: " + e.what());
       }
@@ -182,6 +188,12 @@ std::vector<std::string> Model::species_names() const {
   return out;
 }
 
+std::vector<std::string> Model::law_names() const {
+  std::vector<std::string> out = species_names();
+  out.insert(out.end(), frozen_species.begin(), frozen_species.end());
+  return out;
+}
+
 namespace {
 struct Fnv {
   std::uint64_t h = 1469598103934665603ULL;
@@ -224,6 +236,7 @@ std::uint64_t Model::fingerprint() const {
     for (auto v : r.voxels) f.pod(v);
     f.pod(-1);
   }
+  for (const auto& name : frozen_species) f.str(name);  // none: old fingerprints stay valid
   f.pod(box.dimension);
   f.pod(box.lo);
   f.pod(box.hi);

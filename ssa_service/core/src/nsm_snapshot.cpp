@@ -3,7 +3,9 @@
 //   "SADRNSM1" | u32 version | u64 model fingerprint | u64 seed | 4 x u64 RNG state
 //   | f64 time | u64 events | i32 dimension | vec<f64> positions | vec<f64> densities
 //   | vec<f64> masses | vec<u8> kinds | vec<i64> counts (species-major)
-//   | vec<f64> next event time by voxel | u64 FNV-1a of all previous bytes
+//   | vec<f64> next event time by voxel
+//   | [only with laws of t or frozen species: f64 input time | vec<f64> frozen]
+//   | u64 FNV-1a of all previous bytes
 // Version 1 (written by the 4-ary heap solver) stored the last field as
 // vec<{f64 time, u32 voxel, u32 pad}> in heap order: the same times, permuted;
 // restore() still reads it. The event queue is a function of the times alone
@@ -43,6 +45,10 @@ std::string NsmSolver::save() const {
   w.vec(in.kinds);
   w.vec(state_.all_counts());
   w.vec(queue_.times());
+  if (state_.reactions().has_external_laws()) {  // the inputs the cached rates were made with
+    w.pod(state_.input_time());
+    w.vec(state_.frozen());
+  }
   const std::uint64_t sum = detail::fnv1a(w.str());
   w.pod(sum);
   return w.str();
@@ -101,6 +107,15 @@ void NsmSolver::restore(std::string_view blob) {
   } else {
     times = r.vec<double>("event times", max_len);
   }
+  RdmeState fresh(state_.model());
+  if (!in.densities.empty()) fresh.update_graph(in);
+  double input_time = 0;
+  std::vector<double> frozen;
+  const bool external = fresh.has_graph() && fresh.reactions().has_external_laws();
+  if (external) {
+    input_time = r.pod<double>("input time");
+    frozen = r.vec<double>("frozen concentrations", max_len);
+  }
   if (r.remaining() != 8) throw InvalidArgument("snapshot: unexpected trailing bytes");
   for (std::size_t v = 0; v < times.size(); ++v) {
     if (std::isnan(times[v]) || times[v] < time) {
@@ -110,8 +125,7 @@ void NsmSolver::restore(std::string_view blob) {
     }
   }
 
-  RdmeState fresh(state_.model());
-  if (!in.densities.empty()) fresh.update_graph(in);
+  if (external) fresh.set_inputs(input_time, frozen);
   fresh.restore_counts(std::move(counts));
   if (times.size() != fresh.voxel_count()) {
     throw InvalidArgument("snapshot: " + std::to_string(times.size()) + " event times, expected " +

@@ -34,6 +34,19 @@ void NsmSolver::set_counts(int species, std::span<const std::int64_t> counts) {
   rebuild_queue();
 }
 
+void NsmSolver::set_inputs(double t, std::span<const double> frozen) {
+  if (!state_.reactions().has_external_laws()) return;
+  if (!state_.has_graph()) {
+    throw FailedPrecondition("NsmSolver::set_inputs: call update_graph() first");
+  }
+  state_.set_inputs(t, frozen);
+  if (queue_.size() == state_.voxel_count()) {
+    rescale_queue();
+  } else {
+    rebuild_queue();
+  }
+}
+
 void NsmSolver::rebuild_queue() {
   const std::size_t n = state_.voxel_count();
   std::vector<double>& times = times_scratch_;

@@ -70,8 +70,15 @@ bool RdmeState::update_graph(const ParticleState& particles) {
     check_walls("free_walls", k, model_.free_walls[k].voxels);
   }
   builder_.build(graph_, model_, particles);  // validates before writing
+  // The external laws' inputs survive a rebuild (zeros, t = 0 until the first set_inputs).
+  const double input_time = table_.input_time();
+  std::vector<double> frozen = table_.frozen();
   table_ = ReactionTable::build(model_, graph_);
   n_ = graph_.size();
+  if (frozen.size() != model_.frozen_species.size() * n_) {
+    frozen.assign(model_.frozen_species.size() * n_, 0.0);
+  }
+  table_.set_inputs(input_time, std::move(frozen));
   voxels_.resize(n_);
   for (std::size_t i = 0; i < n_; ++i) {
     VoxelRecord& v = voxels_[i];  // v.rate (the solver's cached rate) is kept: see
@@ -96,7 +103,7 @@ bool RdmeState::update_graph(const ParticleState& particles) {
     law_readers_.resize(model_.species.size());
     for (std::size_t k = 0; k < table_.law_count(); ++k) {
       for (const int s : table_.law(table_.law_reaction(static_cast<int>(k))).species()) {
-        law_readers_[s].push_back(static_cast<int>(k));
+        if (s < species_count()) law_readers_[s].push_back(static_cast<int>(k));  // not frozen
       }
     }
   }
@@ -106,6 +113,38 @@ bool RdmeState::update_graph(const ParticleState& particles) {
   apply_reservoirs();
   refresh_all_laws();
   return true;
+}
+
+void RdmeState::set_inputs(double t, std::span<const double> frozen) {
+  const std::size_t want = model_.frozen_species.size() * n_;
+  if (frozen.size() != want) {
+    throw InvalidArgument("frozen concentrations: " + std::to_string(frozen.size()) +
+                              " values, expected " + std::to_string(want) + " (" +
+                              std::to_string(model_.frozen_species.size()) + " species x " +
+                              std::to_string(n_) + " voxels)",
+                          {{"field", "frozen"}, {"value", std::to_string(frozen.size())}});
+  }
+  for (std::size_t k = 0; k < frozen.size(); ++k) {
+    if (!(frozen[k] >= 0) || !std::isfinite(frozen[k])) {
+      const std::string& name = model_.frozen_species[k / std::max<std::size_t>(n_, 1)];
+      throw InvalidArgument("frozen concentration of '" + name + "' in voxel " +
+                                std::to_string(k % n_) + " = " + format_value(frozen[k]) +
+                                " (allowed: finite and >= 0)",
+                            {{"field", "frozen." + name}, {"value", format_value(frozen[k])}});
+    }
+  }
+  if (!(std::isfinite(t))) {
+    throw InvalidArgument("input time = " + format_value(t) + " (allowed: finite)");
+  }
+  table_.set_inputs(t, std::vector<double>(frozen.begin(), frozen.end()));
+  const std::size_t nl = table_.law_count();
+  for (std::size_t k = 0; k < nl; ++k) {
+    if (!table_.external(static_cast<int>(k))) continue;
+    const std::size_t r = table_.law_reaction(static_cast<int>(k));
+    for (std::size_t i = 0; i < n_; ++i) {
+      law_a_[i * nl + k] = table_.propensity(r, static_cast<std::uint32_t>(i), counts_.data(), n_);
+    }
+  }
 }
 
 void RdmeState::refresh_all_laws() {

@@ -37,15 +37,20 @@ CompiledReaction compile(const Reaction& rx) {
 ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& graph) {
   ReactionTable t;
   const std::size_t n = graph.size();
-  t.species_ = model.species_names();
+  t.species_ = model.law_names();
+  t.ns_ = static_cast<int>(model.species.size());
   std::size_t widest = 0;
   for (const Reaction& rx : model.reactions) {
     t.reactions_.push_back(compile(rx));
     t.names_.push_back(rx.name);
     if (rx.law) {
       t.reactions_.back().law = static_cast<int>(t.laws_.size());
-      t.laws_.push_back(
-          {rate_law::RateLaw(*rx.law, t.species_, false), rx.reactants, t.reactions_.size() - 1});
+      rate_law::RateLaw law(*rx.law, t.species_);
+      const auto& sp = law.species();
+      const bool external =
+          law.uses_time() || std::any_of(sp.begin(), sp.end(), [&](int s) { return s >= t.ns_; });
+      t.has_external_ = t.has_external_ || external;
+      t.laws_.push_back({std::move(law), rx.reactants, t.reactions_.size() - 1, external});
       widest = std::max(widest, t.laws_.back().law.species().size());
     }
   }
@@ -105,15 +110,18 @@ double ReactionTable::law_propensity(std::size_t r, std::uint32_t i, double volu
   const std::vector<int>& sp = law.species();
   double* c = scratch_.data();
   for (std::size_t k = 0; k < sp.size(); ++k) {
-    c[k] = static_cast<double>(counts[sp[k] * n_voxels + i]) / volume;
+    c[k] = sp[k] < ns_ ? static_cast<double>(counts[sp[k] * n_voxels + i]) / volume
+                       : frozen_[(sp[k] - ns_) * n_voxels + i];
   }
-  const double a = volume * law.density(c, 0.0);
+  const double a = volume * law.density(c, input_time_);
   if (a >= 0 && a < std::numeric_limits<double>::infinity()) return a;
   std::string state;
   for (std::size_t k = 0; k < sp.size(); ++k) {
-    state +=
-        (k ? ", " : "") + species_[sp[k]] + " = " + std::to_string(counts[sp[k] * n_voxels + i]);
+    state += (k ? ", " : "") + species_[sp[k]] +
+             (sp[k] < ns_ ? " = " + std::to_string(counts[sp[k] * n_voxels + i])
+                          : " (frozen concentration) = " + format_value(c[k]));
   }
+  if (law.uses_time()) state += ", t = " + format_value(input_time_);
   throw NumericalFailure("reaction '" + names_[r] + "' (" + law.definition().text() +
                          "): propensity " + std::to_string(a) + " in voxel " + std::to_string(i) +
                          " (V = " + std::to_string(volume) + ", counts {" + state +

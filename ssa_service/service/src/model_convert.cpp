@@ -112,6 +112,7 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
     out.voxels.erase(std::unique(out.voxels.begin(), out.voxels.end()), out.voxels.end());
     m.reactions.push_back(std::move(out));
   }
+  m.frozen_species.assign(in.frozen_species().begin(), in.frozen_species().end());
   m.validate();
   return m;
 }

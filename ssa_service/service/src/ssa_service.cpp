@@ -149,6 +149,7 @@ void SsaServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply&
     throw InvalidArgument("advance.t_end = " + format_value(req.t_end()) +
                           " is before the current time " + format_value(s.time()));
   }
+  set_frozen(s, req);
   const std::uint64_t before = s.events();
   s.advance(req.t_end());
   rep.set_graph_seconds(std::chrono::duration<double>(t1 - t0).count());
@@ -162,6 +163,31 @@ void SsaServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply&
   last_reply_ = rep;
   have_last_ = true;
   add_counts();
+}
+
+void SsaServiceHandler::set_frozen(NsmSolver& s, const v1::AdvanceRequest& req) {
+  if (!s.state().reactions().has_external_laws()) return;
+  const auto& names = s.model().frozen_species;
+  const std::size_t n = s.state().voxel_count();
+  std::vector<double>& frozen = frozen_scratch_;
+  frozen.assign(names.size() * n, 0.0);
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const common::v1::SpeciesField* field = nullptr;
+    for (const auto& f : req.frozen().species()) {
+      if (f.name() == names[k]) field = &f;
+    }
+    if (!field || static_cast<std::size_t>(field->concentrations_size()) != n) {
+      throw InvalidArgument(
+          "advance.frozen: the concentrations of the deterministic species '" + names[k] +
+              "' (read by a hybrid reaction's law) are " +
+              (field ? std::to_string(field->concentrations_size()) + " values" : "missing") +
+              "; required: one per particle (" + std::to_string(n) + ") every step",
+          {{"field", "advance.frozen"}, {"value", names[k]}});
+    }
+    std::copy(field->concentrations().begin(), field->concentrations().end(),
+              frozen.begin() + static_cast<std::ptrdiff_t>(k * n));
+  }
+  s.set_inputs(s.time(), frozen);  // held over [time, t_end]: the stage's start values
 }
 
 void SsaServiceHandler::get_counts(const v1::GetCountsRequest& req, v1::GetCountsReply& rep) const {

@@ -85,6 +85,10 @@ class SpeciesTransport {
   /// so wall roles and active_wall() stay as set up.
   void update_sites(std::span<const ParticleKind> kinds);
   [[nodiscard]] double two_kappa(int s) const { return two_kappa_[s]; }
+  /// The time t the rate laws see in the next add_reactions / reaction_rate_scale calls
+  /// (the integrator sets it per stage: docs/method.md section 4b).
+  void set_time(double t) { time_ = t; }
+  [[nodiscard]] double time() const { return time_; }
 
  private:
   struct Term {
@@ -121,6 +125,7 @@ class SpeciesTransport {
   mutable std::vector<std::vector<double>> scratch_;
   std::vector<std::uint8_t> reacts_;       // some reaction fires at the particle
   std::vector<std::uint8_t> active_wall_;  // wall particle with species transport (see above)
+  double time_ = 0;                        // t of the rate laws (set_time)
 };
 
 }  // namespace sadr::fluid

@@ -124,7 +124,8 @@ class FluidClient final : public FluidService,
   void use_geometry_channel(const GeometryChannel* channel) { channel_ = channel; }
 
   FluidStep advance(std::uint64_t step_index, double dt, bool want_geometry,
-                    const SpeciesCounts& counts) override;
+                    const SpeciesCounts& counts,
+                    const std::vector<std::string>& return_concentrations) override;
   Geometry geometry() override;
   FluidFrame frame(const std::vector<std::string>& species) override;
   std::string snapshot(std::uint64_t step_index) override { return snapshot_bytes(step_index); }
@@ -145,7 +146,8 @@ class SsaClient final : public SsaService,
   void use_geometry_channel(GeometryChannel* channel) { channel_ = channel; }
 
   SsaStep advance(std::uint64_t step_index, double t_end, Geometry geometry,
-                  const std::vector<std::string>& return_counts) override;
+                  const std::vector<std::string>& return_counts,
+                  const SpeciesConcentrations& frozen) override;
   SpeciesCounts counts(const std::vector<std::string>& species) override;
   std::string snapshot(std::uint64_t step_index) override { return snapshot_bytes(step_index); }
   void restore(const std::string& snapshot) override { restore_bytes(snapshot); }

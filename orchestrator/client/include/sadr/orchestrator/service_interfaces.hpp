@@ -27,6 +27,9 @@ struct SpeciesCounts {
   [[nodiscard]] bool empty() const { return names.empty(); }
 };
 
+/// Concentrations by species: name, one value per particle.
+using SpeciesConcentrations = std::vector<std::pair<std::string, std::vector<double>>>;
+
 /// The geometry one fluid stage hands to the next SSA stage (positions,
 /// densities, masses, kinds), wherever it travels: a generation number of the
 /// run's shared-memory segment, or the arrays inline. Opaque to the loop.
@@ -61,13 +64,15 @@ struct FluidStep {
   bool particles_moved = false;
   double compute_seconds = 0.0;  ///< inside the backend [s]
   Geometry geometry;             ///< when asked for (advance's want_geometry)
+  /// advance's return_concentrations after the stage (hybrid reactions), in that order.
+  SpeciesConcentrations concentrations;
 };
 
 /// The fluid state of a frame.
 struct FluidFrame {
   ParticleState particles;  ///< with velocities
   /// Deterministic species asked for, in that order: name, one value per particle.
-  std::vector<std::pair<std::string, std::vector<double>>> concentrations;
+  SpeciesConcentrations concentrations;
 };
 
 class FluidService {
@@ -76,9 +81,11 @@ class FluidService {
   /// One fluid stage of length dt (coupling step `step_index`'s call). When
   /// `counts` is not empty, its species' concentrations are first set to
   /// X_is / V_i with the fluid's own volumes (the back-transfer). With
-  /// `want_geometry` the geometry after the stage comes back for the SSA.
+  /// `want_geometry` the geometry after the stage comes back for the SSA, and the
+  /// concentrations of `return_concentrations` (hybrid reactions' frozen species).
   virtual FluidStep advance(std::uint64_t step_index, double dt, bool want_geometry,
-                            const SpeciesCounts& counts) = 0;
+                            const SpeciesCounts& counts,
+                            const std::vector<std::string>& return_concentrations) = 0;
   /// The geometry of the current state (when an advance returned none).
   virtual Geometry geometry() = 0;
   /// Particles with velocities and the named deterministic concentrations.
@@ -102,9 +109,11 @@ class SsaService {
   virtual ~SsaService() = default;
   /// Runs the NSM to the absolute time t_end, first rebuilding the graph from
   /// `geometry` unless it is empty (particles did not move); returns the copy
-  /// numbers of `return_counts` after the stage.
+  /// numbers of `return_counts` after the stage. `frozen`: the deterministic
+  /// concentrations the hybrid reactions' laws hold over the stage (empty: none).
   virtual SsaStep advance(std::uint64_t step_index, double t_end, Geometry geometry,
-                          const std::vector<std::string>& return_counts) = 0;
+                          const std::vector<std::string>& return_counts,
+                          const SpeciesConcentrations& frozen) = 0;
   /// Copy numbers of the named species (empty: all).
   virtual SpeciesCounts counts(const std::vector<std::string>& species) = 0;
   virtual std::string snapshot(std::uint64_t step_index) = 0;

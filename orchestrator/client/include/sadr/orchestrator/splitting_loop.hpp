@@ -36,6 +36,9 @@ struct LoopSettings {
   /// Stochastic species the fluid reads: copy numbers go to the fluid before
   /// every fluid stage (empty: no back-transfer).
   std::vector<std::string> back_transfer;
+  /// Deterministic species the SSA's hybrid laws read: the fluid stage before each
+  /// SSA stage returns them, the SSA holds them frozen over the stage (empty: none).
+  std::vector<std::string> frozen;
   /// Skip the coupling step (Plan::frame_to_frame: SSA alone, nothing moves):
   /// steps go from output to output, checkpoint and stop time (FrameToFrame).
   bool frame_to_frame = false;

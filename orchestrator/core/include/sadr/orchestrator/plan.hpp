@@ -44,9 +44,13 @@ struct Plan {
   std::vector<std::string> fluid_species;          ///< on the fluid wire (deterministic + fed back)
   std::vector<std::string> ssa_species;            ///< on the SSA wire (stochastic)
   std::vector<std::string> back_transfer_species;  ///< stochastic species the fluid reads
-  std::size_t fluid_reactions = 0;                 ///< reactions among deterministic species
-  std::size_t ssa_reactions = 0;                   ///< reactions among stochastic species
-  std::vector<std::string> skipped;                ///< one line per skipped piece, with the reason
+  /// Hybrid reactions: deterministic species the SSA's laws read, sent fluid -> ssa with
+  /// every SSA stage and held frozen over it (docs/method.md section 4c).
+  std::vector<std::string> frozen_species;
+  bool ssa_time_laws = false;        ///< an SSA law reads t (held at each stage's start)
+  std::size_t fluid_reactions = 0;   ///< reactions among deterministic species
+  std::size_t ssa_reactions = 0;     ///< reactions among stochastic species
+  std::vector<std::string> skipped;  ///< one line per skipped piece, with the reason
   /// The scene allows running the SSA stage of step k at the same time as the
   /// fluid stage of step k + 1: Lie splitting, both services, fluid stepping,
   /// no back-transfer (the fluid never reads the SSA, so results are identical).

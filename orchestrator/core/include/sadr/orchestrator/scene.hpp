@@ -92,6 +92,11 @@ struct Reaction {
   /// A law other than mass action (scene key `law`); `rate` is then unused.
   /// Assigned species are already substituted into an expression.
   std::optional<rate_law::Definition> law{};
+  /// Hybrid reaction (docs/method.md section 4c): the species of the other path its
+  /// law reads (a stochastic reaction: deterministic species, frozen over each SSA
+  /// stage; a deterministic one: stochastic species, as X / V from the back-transfer).
+  std::vector<std::string> reads_other{};
+  bool uses_time = false;  ///< the law reads the time t
   [[nodiscard]] unsigned order() const;
 };
 

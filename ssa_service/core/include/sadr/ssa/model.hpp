@@ -106,6 +106,10 @@ struct Model {
   std::vector<WallReservoir> reservoirs;
   std::vector<NeumannSource> neumann;
   std::vector<FreeWall> free_walls;  ///< walls that are ordinary voxels for a species
+  /// Hybrid reactions (docs/method.md section 4c): deterministic species the rate
+  /// laws read, not simulated; their concentrations are inputs held constant over
+  /// each advance (NsmSolver::set_inputs). Law species index ns + k is frozen_species[k].
+  std::vector<std::string> frozen_species;
 
   /// Checks every field; throws InvalidArgument listing all problems, each with
   /// the field, the value and the allowed range.
@@ -114,6 +118,8 @@ struct Model {
   [[nodiscard]] int species_index(std::string_view name) const;
   /// The species names, in index order (what rate laws are compiled against).
   [[nodiscard]] std::vector<std::string> species_names() const;
+  /// species_names() then frozen_species: what rate laws are compiled against.
+  [[nodiscard]] std::vector<std::string> law_names() const;
   /// 64-bit fingerprint of every field (used to refuse restoring a snapshot
   /// into a solver built with another model).
   [[nodiscard]] std::uint64_t fingerprint() const;

@@ -61,6 +61,12 @@ class NsmSolver {
   [[nodiscard]] std::span<const std::int64_t> counts(int species) const {
     return state_.counts(species);
   }
+  /// Hybrid reactions and laws of t (docs/method.md section 4c): the rate laws that
+  /// read t or a frozen species are re-evaluated at `t` and `frozen` (RdmeState::set_inputs)
+  /// and held constant until the next call; pending event times are rescaled to the
+  /// new rates (Gibson-Bruck: exact for piecewise-constant rates). Without such laws
+  /// it does nothing (no check, no cost).
+  void set_inputs(double t, std::span<const double> frozen);
   /// Runs every event with time <= t_end on the frozen graph, then sets the
   /// clock to exactly t_end (pending event times stay valid: memorylessness).
   /// @param t_end [T], >= time()

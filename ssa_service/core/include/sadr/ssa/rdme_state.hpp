@@ -67,6 +67,13 @@ class RdmeState {
   void restore_counts(std::vector<std::int64_t> counts);
   /// Sets the reservoir counts of wall voxels; returns true if any changed.
   bool apply_reservoirs();
+  /// Sets the inputs of the external rate laws (reactions().has_external_laws()):
+  /// the time t they see and the frozen species' concentrations (model().frozen_species
+  /// major, one per voxel; finite, >= 0), and recomputes those laws' propensities.
+  /// Requires a graph. Throws InvalidArgument on a wrong size or value.
+  void set_inputs(double t, std::span<const double> frozen);
+  [[nodiscard]] double input_time() const { return table_.input_time(); }
+  [[nodiscard]] const std::vector<double>& frozen() const { return table_.frozen(); }
 
   /// Total reaction propensity of voxel i [1/T].
   [[nodiscard]] double reaction_rate(std::uint32_t i) const {

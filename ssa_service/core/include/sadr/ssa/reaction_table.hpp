@@ -67,6 +67,18 @@ class ReactionTable {
   [[nodiscard]] const rate_law::RateLaw& law(std::size_t r) const {
     return laws_[reactions_[r].law].law;
   }
+  /// Whether some law reads the time t or a frozen (deterministic) species.
+  [[nodiscard]] bool has_external_laws() const { return has_external_; }
+  /// Whether law k (of law_reaction(k)) reads t or a frozen species.
+  [[nodiscard]] bool external(int k) const { return laws_[k].external; }
+  /// Sets the inputs the external laws read: the time t and the frozen
+  /// concentrations [(law species index - species count) * n_voxels + voxel].
+  void set_inputs(double t, std::vector<double> frozen) {
+    input_time_ = t;
+    frozen_ = std::move(frozen);
+  }
+  [[nodiscard]] double input_time() const { return input_time_; }
+  [[nodiscard]] const std::vector<double>& frozen() const { return frozen_; }
 
  private:
   /// a = V v(X / V) for rate-law reaction r in voxel i of volume V (0 if a
@@ -79,8 +91,13 @@ class ReactionTable {
     rate_law::RateLaw law;
     std::vector<std::pair<int, int>> needs;  ///< reactants (species, nu): a = 0 if X < nu
     std::size_t reaction = 0;                ///< its reaction index
+    bool external = false;                   ///< reads t or a frozen species
   };
   std::vector<LawEntry> laws_;
+  int ns_ = 0;  ///< simulated species; law species >= ns_ are frozen
+  bool has_external_ = false;
+  double input_time_ = 0;                ///< t seen by the laws (set_inputs)
+  std::vector<double> frozen_;           ///< frozen concentrations (set_inputs)
   std::vector<std::string> names_;       ///< reaction names (messages)
   std::vector<std::string> species_;     ///< species names (messages)
   mutable std::vector<double> scratch_;  ///< concentrations of one law evaluation

@@ -48,6 +48,9 @@ class SsaServiceHandler : public wire::TypedHandler<v1::SsaRequest, v1::SsaReply
   int threads_ = 0;  ///< OpenMP threads of the serving thread (SADR_*_THREADS; 0 = default)
   void init(const v1::InitRequest& req, v1::InitReply& rep);
   void advance(const v1::AdvanceRequest& req, v1::AdvanceReply& rep);
+  /// Hybrid reactions / laws of t: the stage's inputs from advance.frozen (refused if
+  /// a frozen species is missing or has the wrong length); nothing without such laws.
+  void set_frozen(NsmSolver& s, const v1::AdvanceRequest& req);
   void get_counts(const v1::GetCountsRequest& req, v1::GetCountsReply& rep) const;
   /// Appends the copy numbers of species `which` (indices) to `out`.
   void copy_counts(const std::vector<int>& which, common::v1::SpeciesFields& out) const;
@@ -57,9 +60,10 @@ class SsaServiceHandler : public wire::TypedHandler<v1::SsaRequest, v1::SsaReply
 
   std::unique_ptr<NsmSolver> solver_;
   std::vector<std::string> species_names_;
-  std::vector<InflowBuffer> inflows_;  ///< re-imposed at Init and every Advance
-  ParticleState moved_;                ///< the last Advance's particles (buffers reused)
-  wire::SharedGeometry geometry_shm_;  ///< the segment Advance.geometry_shm names (mapped once)
+  std::vector<InflowBuffer> inflows_;   ///< re-imposed at Init and every Advance
+  ParticleState moved_;                 ///< the last Advance's particles (buffers reused)
+  std::vector<double> frozen_scratch_;  ///< set_frozen's concentrations (buffer reused)
+  wire::SharedGeometry geometry_shm_;   ///< the segment Advance.geometry_shm names (mapped once)
   std::uint64_t seed_ = 0;
   // Idempotent advance: the last (run_id, step_index) and its reply.
   std::string last_run_id_;
