@@ -180,53 +180,61 @@ def output_times(end, every):
 def channel(backend):
     """The li2015 channel, 100 long (x, the flow, periodic), 20 high (y, walls below y = 0 and
     above y = 20) and 10 deep (z, periodic): the paper's 100 x 10 x 20 with its height axis
-    called y here, because the prescribed backend's Poiseuille field runs across y."""
+    called y here, because the prescribed backend's Poiseuille field runs across y. The
+    prescribed scene, the one run here, is the 2D x-y section of the same channel: nothing
+    varies across the depth (periodic, the flow and the injury uniform in z), so the 3D problem
+    is the 2D one; and its no-slip planes are the planes of the first and last fluid rows,
+    y = 0 and y = 20 (the paper's H = 20), so the injury row stays on the injury."""
     p = ref.rate_parameters()
     tdpd = backend == "tdpd"
+    slab = backend == "prescribed"
     # 160 x 32 x 16 cells of 0.625: number density 1/dx^3 = 4.096 (li2015: 4); the prescribed
     # scene (no momentum, the run that fits this machine) is coarser: dx = 1, h = 2 dx
-    dx = 1.0 if backend == "prescribed" else 0.625
-    h = 2.9 if tdpd else (2 if backend == "prescribed" else 3) * dx  # r_c or the SPH support
+    dx = 1.0 if slab else 0.625
+    h = 2.9 if tdpd else (2 if slab else 3) * dx  # r_c or the SPH support
     nlayers = int(-(-h // dx))  # wall layers covering the interaction range
     ylo, yhi = -nlayers * dx, 20.0 + nlayers * dx
     rows = 1 if dx >= 1.0 else 2  # fluid rows of the injury layer, delta = rows dx
     delta = rows * dx
     u_max = 0.1386        # 1 mm/s in tDPD units (L* = 1 um, t* = 1.386e-4 s)
     h_eff = 20.0 + dx     # no-slip planes about half a spacing outside the last fluid rows
-    # the prescribed scene, the one run here, is cut to what this machine affords: depth 4
-    # instead of 10 (the flow and the injury do not vary across z) and t <= 200
-    depth = 4.0 if backend == "prescribed" else 10.0
-    end = 200.0 if backend == "prescribed" else 400.0
+    depth = 10.0
+    end = 600.0 if slab else 400.0
     g = 8.0 * ref.NU * u_max / h_eff ** 2
     what = {"tdpd": "tdpd: the li2015 fluid (rho = 4, a = 18.75, gamma = 4.5, r_c = 2.9, "
                     "r_cc = 1.0)",
             "sdpd": "sdpd: an SDPD fluid of the same kinematic viscosity nu = 138.6",
-            "prescribed": "prescribed: the Poiseuille field itself, no momentum equation"}[backend]
+            "prescribed": "prescribed: the Poiseuille field itself (no momentum equation), "
+                          "no-slip at y = 0 and 20"}[backend]
+    # 2D: the box, the regions and the lattice lose the depth coordinate
+    zl, zu = ("", "") if slab else (", 0", f", {num(depth)}")
+    size = "100 x 20 (x-y section)" if slab else f"100 x 20 x {num(depth)}"
     lines = [
         HEADER,
         "# li2015 sec. III C: coagulation and fibrinolysis in a micro-channel (Figs. 8-10), the",
         "# paper's 100 x 10 x 20 domain in tDPD units (L* = 1 um, t* = 1.386e-4 s, C* = 1 nM),",
         "# reactions accelerated 1000x; here x = flow (periodic), y = height 20 (the paper's z;",
-        "# frozen wall layers below y = 0 and above y = 20), z = depth 10 (periodic). Poiseuille",
-        f"# flow with u_max = {u_max} (1 mm/s). The inlet buffer (0 <= x <= 2.9 = r_c) holds every",
-        "# species at C_i0; particles carried out at x = 100 re-enter it. The injured wall",
-        "# 10 < x < 20 (0.1 < x/L < 0.2) feeds the Table IV fluxes into the fluid layer next to it",
-        f"# (delta = {num(delta)}: the fluid particles there at t = 0, as rate densities x L / delta;",
-        "# Neumann flux laws are not built yet, docs/coagulation.md \"Injury\").",
+        "# frozen wall layers below y = 0 and above y = 20), z = depth 10 (periodic"
+        + ("; here its x-y section)." if slab else ")."),
+        f"# Poiseuille flow with u_max = {u_max} (1 mm/s). The inlet buffer (0 <= x <= 2.9 = r_c)",
+        "# holds every species at C_i0; particles carried out at x = 100 re-enter it. The injured",
+        "# wall 10 < x < 20 (0.1 < x/L < 0.2) feeds the Table IV fluxes into the fluid layer next",
+        f"# to it (delta = {num(delta)}: the fluid particles there at t = 0, as rate densities x L /",
+        "# delta; Neumann flux laws are not built yet, docs/coagulation.md \"Injury\").",
         f"# Backend {what}.",
         "# docs/coagulation.md: the model, the corrections of the paper's tables, what was run.",
         f"name: coagulation_cascade{'' if tdpd else '_' + backend}",
-        f"description: li2015 coagulation cascade in a 100 x 20 x {num(depth)} channel ({backend})",
-        "dimension: 3",
+        f"description: li2015 coagulation cascade in a {size} channel ({backend})",
+        f"dimension: {2 if slab else 3}",
         "box:",
-        f"  lower: [0.0, {num(ylo)}, 0.0]",
-        f"  upper: [100.0, {num(yhi)}, {num(depth)}]",
-        "  periodic: [true, false, true]",
+        f"  lower: [0.0, {num(ylo)}{', 0.0' if not slab else ''}]",
+        f"  upper: [100.0, {num(yhi)}{zu}]",
+        f"  periodic: [true, false{'' if slab else ', true'}]",
         "regions:",
-        f"  - {{name: wall_lo, shape: box, lower: [0, {num(ylo)}, 0], upper: [100, -0.3, {num(depth)}]}}",
-        f"  - {{name: wall_hi, shape: box, lower: [0, 20.3, 0], upper: [100, {num(yhi)}, {num(depth)}]}}",
-        f"  - {{name: inlet, shape: box, lower: [0, -0.3, 0], upper: [2.9, 20.3, {num(depth)}]}}",
-        f"  - {{name: injury, shape: box, lower: [10, -0.3, 0], upper: [20, {num(delta - 0.3)}, {num(depth)}], "
+        f"  - {{name: wall_lo, shape: box, lower: [0, {num(ylo)}{zl}], upper: [100, -0.3{zu}]}}",
+        f"  - {{name: wall_hi, shape: box, lower: [0, 20.3{zl}], upper: [100, {num(yhi)}{zu}]}}",
+        f"  - {{name: inlet, shape: box, lower: [0, -0.3{zl}], upper: [2.9, 20.3{zu}]}}",
+        f"  - {{name: injury, shape: box, lower: [10, -0.3{zl}], upper: [20, {num(delta - 0.3)}{zu}], "
         f"kinds: [fluid]}}   # the fluid layer 0 <= y < {num(delta)} on the injured wall",
         "particles:",
         f"  spacing: {dx}",
@@ -258,8 +266,8 @@ def channel(backend):
     else:
         lines += [
             f"  smoothing_length: {num(h)}   # 2 dx (species operator)",
-            f"  parameters: {{field: poiseuille, max_velocity: {u_max}, wall_lo: {num(-dx / 2)}, "
-            f"wall_hi: {num(20 + dx / 2)}}}",
+            f"  parameters: {{field: poiseuille, max_velocity: {u_max}, wall_lo: 0, wall_hi: 20}}"
+            "   # H = 20: the injury row y = 0 does not move",
         ]
     lines += parameters_yaml(p, [("LF", ref.L_INJURY / delta)])
     lines.append("species:")

@@ -107,55 +107,65 @@ def mm(k, km, e, s):
     return k * e * s / (km + s)
 
 
+def table3_rates(p, y):
+    """Table III source terms Q1..Q23 of the state y (23 x ... arrays: one voxel or many)."""
+    (IXa, IX, VIIIa, VIII, Va, V, Xa, X, IIa, II, Ia, I, XIa, XI, AT, TFPI, APC, PC, a1AT,
+     tPA, PLA, PLS, a2AP) = y
+    Z = VIIIa * IXa / 0.56
+    W = Va * Xa / 0.1
+    r9 = mm(p["k9"], p["K9M"], XIa, IX)
+    r8 = mm(p["k8"], p["K8M"], IIa, VIII)
+    rc8 = mm(p["hC8"], p["HC8M"], APC, VIIIa)
+    r5 = mm(p["k5"], p["K5M"], IIa, V)
+    rc5 = mm(p["hC5"], p["HC5M"], APC, Va)
+    r10 = mm(p["k10"], p["K10M"], Z, X)
+    r2 = mm(p["k2"], p["K2M"], W, II)
+    r1 = mm(p["k1"], p["K1M"], IIa, I)
+    rh1 = mm(p["h1"], p["H1M"], PLA, Ia)
+    r11 = mm(p["k11"], p["K11M"], IIa, XI)
+    rpc = mm(p["kPC"], p["KPCM"], IIa, PC)
+    rpla = mm(p["kPLA"], p["KPLAM"], tPA, PLS)
+    return np.array([
+        r9 - p["h9"] * IXa * AT, -r9,
+        r8 - p["h8"] * VIIIa - rc8, -r8,  # Q4: sign corrected (VIII is consumed)
+        r5 - p["h5"] * Va - rc5, -r5,
+        r10 - p["h10"] * Xa * AT - p["hTFPI"] * TFPI * Xa, -r10,
+        r2 - p["h2"] * IIa * AT, -r2,
+        r1 - rh1, -r1,
+        r11 - p["h11A3"] * XIa * AT - p["h11L1"] * XIa * a1AT, -r11,
+        -(p["h9"] * IXa + p["h10"] * Xa + p["h2"] * IIa + p["h11A3"] * XIa) * AT,
+        -p["hTFPI"] * TFPI * Xa,
+        rpc - p["hPC"] * APC * a1AT, -rpc,
+        -p["hPC"] * APC * a1AT - p["h11L1"] * XIa * a1AT,
+        0.0 * tPA,  # Q20 = 0: tPA only enters through the wall
+        rpla - p["hPLA"] * PLA * a2AP, -rpla, -p["hPLA"] * PLA * a2AP,
+    ])
+
+
+def add_injury_rates(p, t, y, d, f):
+    """Adds the Table IV terms (flux densities) times f = L / delta to d, in place."""
+    IX, X, IIa, Ia, XI = y[1], y[7], y[8], y[10], y[13]
+    a = f * mm(p["k79"], p["K79M"], p["TFVIIa"], IX)
+    b = f * mm(p["k710"], p["K710M"], p["TFVIIa"], X)
+    c = f * mm(p["phi11"], p["PHI11M"], p["XIIa"], XI)
+    ktpa = (p["ktPAC"] + p["ktPAIIa"] * math.exp(-p["ktPAIIa_decay"] * t) * IIa +
+            p["ktPAIa"] * Ia)
+    d[0] += a
+    d[1] -= a
+    d[6] += b
+    d[7] -= b
+    d[12] += c
+    d[13] -= c
+    d[19] += f * ktpa * p["ENDO"]
+
+
 def rhs_factory(p, injury):
     flux_to_volume = L_INJURY / DELTA
 
     def rhs(t, y):
-        (IXa, IX, VIIIa, VIII, Va, V, Xa, X, IIa, II, Ia, I, XIa, XI, AT, TFPI, APC, PC, a1AT,
-         tPA, PLA, PLS, a2AP) = y
-        Z = VIIIa * IXa / 0.56
-        W = Va * Xa / 0.1
-        r9 = mm(p["k9"], p["K9M"], XIa, IX)
-        r8 = mm(p["k8"], p["K8M"], IIa, VIII)
-        rc8 = mm(p["hC8"], p["HC8M"], APC, VIIIa)
-        r5 = mm(p["k5"], p["K5M"], IIa, V)
-        rc5 = mm(p["hC5"], p["HC5M"], APC, Va)
-        r10 = mm(p["k10"], p["K10M"], Z, X)
-        r2 = mm(p["k2"], p["K2M"], W, II)
-        r1 = mm(p["k1"], p["K1M"], IIa, I)
-        rh1 = mm(p["h1"], p["H1M"], PLA, Ia)
-        r11 = mm(p["k11"], p["K11M"], IIa, XI)
-        rpc = mm(p["kPC"], p["KPCM"], IIa, PC)
-        rpla = mm(p["kPLA"], p["KPLAM"], tPA, PLS)
-        d = np.array([
-            r9 - p["h9"] * IXa * AT, -r9,
-            r8 - p["h8"] * VIIIa - rc8, -r8,  # Q4: sign corrected (VIII is consumed)
-            r5 - p["h5"] * Va - rc5, -r5,
-            r10 - p["h10"] * Xa * AT - p["hTFPI"] * TFPI * Xa, -r10,
-            r2 - p["h2"] * IIa * AT, -r2,
-            r1 - rh1, -r1,
-            r11 - p["h11A3"] * XIa * AT - p["h11L1"] * XIa * a1AT, -r11,
-            -(p["h9"] * IXa + p["h10"] * Xa + p["h2"] * IIa + p["h11A3"] * XIa) * AT,
-            -p["hTFPI"] * TFPI * Xa,
-            rpc - p["hPC"] * APC * a1AT, -rpc,
-            -p["hPC"] * APC * a1AT - p["h11L1"] * XIa * a1AT,
-            0.0,
-            rpla - p["hPLA"] * PLA * a2AP, -rpla, -p["hPLA"] * PLA * a2AP,
-        ])
+        d = table3_rates(p, y)
         if injury:
-            f = flux_to_volume
-            a = f * mm(p["k79"], p["K79M"], p["TFVIIa"], IX)
-            b = f * mm(p["k710"], p["K710M"], p["TFVIIa"], X)
-            c = f * mm(p["phi11"], p["PHI11M"], p["XIIa"], XI)
-            ktpa = (p["ktPAC"] + p["ktPAIIa"] * math.exp(-p["ktPAIIa_decay"] * t) * IIa +
-                    p["ktPAIa"] * Ia)
-            d[0] += a
-            d[1] -= a
-            d[6] += b
-            d[7] -= b
-            d[12] += c
-            d[13] -= c
-            d[19] += f * ktpa * p["ENDO"]
+            add_injury_rates(p, t, y, d, flux_to_volume)
         return d
 
     return rhs
