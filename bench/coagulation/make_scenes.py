@@ -200,6 +200,10 @@ def channel(backend):
     h_eff = 20.0 + dx     # no-slip planes about half a spacing outside the last fluid rows
     depth = 10.0
     end = 600.0 if slab else 400.0
+    # one fluid call per coupling step must answer within sadr's reply timeout (--timeout, 120 s):
+    # ~10 sub-steps of tdpd (0.003, ~1 s CPU each here) or sdpd (7.9e-4, ~1.5 s CPU each) per
+    # call; the prescribed scene's sub-step costs 4 ms (docs/coagulation.md, "The sdpd channel")
+    tau = {"tdpd": 0.025, "sdpd": 0.01, "prescribed": 1.0}[backend]
     g = 8.0 * ref.NU * u_max / h_eff ** 2
     what = {"tdpd": "tdpd: the li2015 fluid (rho = 4, a = 18.75, gamma = 4.5, r_c = 2.9, "
                     "r_cc = 1.0)",
@@ -281,7 +285,7 @@ def channel(backend):
         lines.append(f"     boundaries: [{', '.join(bnd)}]}}")
     lines += chemistry_tail(p, ", regions: [injury]")
     lines += [
-        f"time: {{coupling_step: 1.0, end: {num(end)}}}",
+        f"time: {{coupling_step: {num(tau)}, end: {num(end)}}}",
         "output:",
         "  every: 10.0",
         "  formats: [csv]",

@@ -11,6 +11,7 @@ and 2.4e-5 (table3), at t = 0.25 in the initial quench of the 0.1 % enzymes; eve
 <= 5.8e-6. The bound is 2x the worst; the error ratio between sub-steps 0.01 and 0.005 is
 asserted to be that of a second-order method (measured 4.06)."""
 import importlib.util
+import re
 import subprocess
 import sys
 
@@ -91,6 +92,25 @@ def test_scenes_match_their_generator():
     proc = subprocess.run([sys.executable, str(REPO / "bench/coagulation/make_scenes.py"),
                            "--check"], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+# ~1 s (tdpd) to ~1.5 s (sdpd) CPU per sub-step for the ~1e5-particle channels, measured
+# (docs/coagulation.md, "The sdpd channel and the reply timeout"): at most this many sub-steps per
+# coupling step keep one fluid call well inside sadr's 120 s reply timeout on a loaded machine.
+MAX_SUBSTEPS_PER_CALL = 20
+
+
+@pytest.mark.parametrize("scene", ["coagulation_cascade.yaml", "coagulation_cascade_sdpd.yaml"])
+def test_channel_fluid_calls_fit_the_reply_timeout(sadr_bin, scene):
+    """A coupling step of 1.0 was 1266 sdpd sub-steps (~30 CPU min) in one fluid call: the run
+    died on the 120 s reply timeout. The plan's own estimate of sub-steps per call is bounded."""
+    proc = subprocess.run([str(sadr_bin), "validate", str(REPO / "examples" / scene)],
+                          capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    m = re.search(r"~([0-9.e+]+) fluid sub-step\(s\) each", proc.stdout + proc.stderr)
+    assert m, proc.stdout + proc.stderr
+    print(f"{scene}: ~{m.group(1)} fluid sub-steps per coupling step")
+    assert float(m.group(1)) <= MAX_SUBSTEPS_PER_CALL, m.group(0)
 
 
 def test_reaction_table_sums_to_table_iii():
