@@ -89,7 +89,6 @@ def scene(n, tau, end, every, volume=1.0, stochastic=True):
         reactants = [t.strip() for t in eq.split("->")[0].split("+") if t.strip() != "0"]
         lines += split(name, eq, law_text(law, p, reactants), stochastic)
     for gain, lose, expr in make_scenes.INJURY:
-        expr = expr.replace("ktPAIIa*clock", f"ktPAIIa*exp(-{make_scenes.num(p['ktPAIIa_decay'])}*t)")
         eq = f"{lose} -> {gain}" if lose else f"0 -> {gain}"
         lines += split(f"injury_{gain}", eq, f"LF*{expr}", stochastic)
     lines += [

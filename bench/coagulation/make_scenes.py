@@ -62,27 +62,13 @@ INJURY = [
     ("IXa", "IX", "k79*TFVIIa*IX/(K79M + IX)"),
     ("Xa", "X", "k710*TFVIIa*X/(K710M + X)"),
     ("XIa", "XI", "phi11*XIIa*XI/(PHI11M + XI)"),
-    ("tPA", None, "(ktPAC + ktPAIIa*clock*IIa + ktPAIa*Ia)*ENDO"),
+    ("tPA", None, "(ktPAC + ktPAIIa*exp(-ktPAIIa_decay*t)*IIa + ktPAIa*Ia)*ENDO"),
 ]
-# exp(-ktPAIIa_decay t) of ktPA^IIa as a helper species: `t` in laws is not supported yet, so
-# clock starts at 1, decays by "clock -> 0" at ktPAIIa_decay, never diffuses and is never reset.
-CLOCK = "clock"
-
-
-def clock_lines(p):
-    return ([f"  - {{name: {CLOCK}, stochastic: false, diffusivity: 0, initial: [{{concentration: "
-             "1}]}   # exp(-ktPAIIa_decay t) (helper, not a li2015 species)"],
-            [f'  - {{name: {CLOCK}_decay, equation: "{CLOCK} -> 0", '
-             f"rate: {num(p['ktPAIIa_decay'])}}}   # clock = exp(-ktPAIIa_decay t)"])
-
-
 def chemistry_tail(p, regions):
-    """The assigned species, the clock, Table III as reactions and the injury terms."""
+    """The assigned species, Table III as reactions and the injury terms."""
     lines = [f'  - {{name: {name}, assigned: "{expr}"}}   # [{idx}]'
              for name, idx, expr in ref.ASSIGNED]
-    species_clock, reaction_clock = clock_lines(p)
-    return lines + species_clock + reactions_yaml(p) + reaction_clock + injury_reactions(
-        "LF", regions)
+    return lines + reactions_yaml(p) + injury_reactions("LF", regions)
 
 
 def injury_reactions(factor, regions=""):
@@ -114,8 +100,8 @@ def law_yaml(law, p, equation):
 
 
 def parameters_yaml(p, extra):
-    names = ["k79", "K79M", "k710", "K710M", "phi11", "PHI11M", "ktPAC", "ktPAIIa", "ktPAIa",
-             "TFVIIa", "ENDO", "XIIa"]
+    names = ["k79", "K79M", "k710", "K710M", "phi11", "PHI11M", "ktPAC", "ktPAIIa",
+             "ktPAIIa_decay", "ktPAIa", "TFVIIa", "ENDO", "XIIa"]
     lines = ["parameters:   # Table IV constants (tDPD units, rates accelerated 1000x)"]
     for k, v in extra:
         lines.append(f"  {k}: {num(v)}")
