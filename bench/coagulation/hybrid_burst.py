@@ -150,10 +150,10 @@ def main():
     per_nm = MOLECULES_PER_NM_UM3 * args.volume if args.deterministic else 1.0
     xa = np.array([run.frame(k).species["Xa"] for k in range(len(run))]) * per_nm
     ixa = np.array([run.frame(k).species["IXa"] for k in range(len(run))]) * per_nm
-    td_t, td_c = deterministic(args.end, 0.05, False)
+    td_t, td_c = deterministic(max(args.end, 160.0), 0.05, False)  # the whole peak
     level = 0.5 * td_c[td_t > QUENCH].max()
     t_det = first_crossing(td_t, td_c, level)
-    t_det0 = first_crossing(*deterministic(args.end, 0.05, True), level)
+    t_det0 = first_crossing(*deterministic(max(args.end, 160.0), 0.05, True), level)
     burst = np.array([first_crossing(t, iia[:, v], level) for v in range(iia.shape[1])])
     k0 = int(np.searchsorted(t, QUENCH))
     tmax = t[k0 + np.argmax(iia[k0:], axis=0)]
