@@ -130,6 +130,21 @@ const std::vector<MalformedCase>& cases() {
        "  backend: sdpd\n  sound_speed: 1\n  shear_viscosity: 0.1\n  wall_model: morris\n"
        "  wall_planes: [{region: left, point: [0.1], normal: [0]}]\n",
        {"fluid.wall_planes[0].normal: must be non-zero"}},
+      {"wall_circle_with_a_normal",
+       "  backend: static\n",
+       "  backend: sdpd\n  sound_speed: 1\n  shear_viscosity: 0.1\n  wall_model: morris\n"
+       "  wall_planes: [{region: left, center: [0.1], radius: 0.1, normal: [1]}]\n",
+       {"fluid.wall_planes[0].normal: not with radius"}},
+      {"wall_center_without_radius",
+       "  backend: static\n",
+       "  backend: sdpd\n  sound_speed: 1\n  shear_viscosity: 0.1\n  wall_model: morris\n"
+       "  wall_planes: [{region: left, center: [0.1], point: [0.1], normal: [1]}]\n",
+       {"fluid.wall_planes[0].center: only with radius"}},
+      {"wall_circle_radius_zero",
+       "  backend: static\n",
+       "  backend: sdpd\n  sound_speed: 1\n  shear_viscosity: 0.1\n  wall_model: morris\n"
+       "  wall_planes: [{region: left, center: [0.1], radius: 0}]\n",
+       {"fluid.wall_planes[0].radius:"}},
       {"species_name_reused",
        "  - name: B\n",
        "  - name: A\n",

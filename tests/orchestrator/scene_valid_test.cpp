@@ -99,6 +99,16 @@ TEST(SceneValid, WallModelAndPlanes) {
   EXPECT_EQ(fl.wall_planes[0].region, "left");
   EXPECT_EQ(fl.wall_planes[0].point[0], 0.1);
   EXPECT_EQ(fl.wall_planes[0].normal[0], 1.0);
+  EXPECT_EQ(fl.wall_planes[0].radius, 0.0);
+  // a curved surface: a circle (sphere) around center, the fluid outside
+  const auto curved =
+      parse_scene(test::replace_once(text, "{region: left, point: [0.1], normal: [2]}",
+                                     "{region: left, center: [0.3], radius: 0.2}"),
+                  "scene.yaml")
+          .fluid;
+  ASSERT_EQ(curved.wall_planes.size(), 1U);
+  EXPECT_EQ(curved.wall_planes[0].point[0], 0.3);
+  EXPECT_EQ(curved.wall_planes[0].radius, 0.2);
 }
 
 TEST(SceneValid, OutputTimesDefaultToStartAndEnd) {

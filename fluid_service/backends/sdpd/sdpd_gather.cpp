@@ -212,9 +212,11 @@ void SdpdBackend::gather_pairs(std::size_t i, const Y& y, const GatherTerms& t, 
       }
       continue;
     }
+    // Morris et al. 1997 extrapolated wall values: v_ij = beta v_i in the viscous term, and
+    // beta (C_w - C_i) for Dirichlet species (the held value on the wall surface).
+    double beta = 1.0;
     if (morris_.enabled() && morris_.extrapolates(j)) {
-      // Morris et al. 1997 extrapolated wall velocity: v_ij = beta v_i in the viscous term.
-      const double beta = morris_.beta(&x[3 * i], j, t.h);
+      beta = morris_.beta(&x[3 * i], j, t.h);
       std::array<double, D> vb;
       for (int a = 0; a < D; ++a) vb[a] = beta * vi[a];
       const SdpdMomentumTerm pressure_only{0.0};
@@ -238,10 +240,10 @@ void SdpdBackend::gather_pairs(std::size_t i, const Y& y, const GatherTerms& t, 
     }
     if (t.species_on) {
       const double k = t.diffusion.coefficient(g, vol_[j]);
-      s.k_sum += k;
+      s.k_sum += beta * k;  // the diffusion limit sees the extrapolated pair's weight
       double xij[3] = {0.0, 0.0, 0.0};
       for (int a = 0; a < D; ++a) xij[a] = g.x[a];
-      species_.add_pair(i, j, k, xij, y.c, out.dc);
+      species_.add_pair(i, j, k, xij, y.c, out.dc, beta);
     }
   }
 }

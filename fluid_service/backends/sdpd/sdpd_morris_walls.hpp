@@ -4,10 +4,12 @@
 /// (WallModel::kMorrisExtrapolated, docs/fluid-core.md): in the viscous term of a pair of a fluid
 /// particle i and a wall particle j of a planar WallRegion, the wall velocity is -(d_j/d_i) v_i,
 /// i.e. v_ij = beta v_i with beta = min(1.5, 1 + d_j / max(d_i, 1e-3 h)), d the distance to the
-/// region's wall plane (d_j behind it, d_i in front). The pressure term keeps v_j = 0.
+/// region's wall surface (d_j behind it, d_i in front): a plane, or a circle / sphere with the
+/// fluid outside (WallRegion::surface_radius > 0). The pressure term keeps v_j = 0.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -32,10 +34,7 @@ class MorrisWalls {
       const int w = region_[i];
       if (w < 0) continue;
       const auto& reg = regions_[static_cast<std::size_t>(w)];
-      double d = 0;
-      for (int a = 0; a < 3; ++a)
-        d -= reg.inward_normal[a] * (initial.positions[3 * i + a] - reg.surface_point[a]);
-      depth_[i] = std::max(d, 0.0);
+      depth_[i] = std::max(-signed_distance(reg, &initial.positions[3 * i]), 0.0);
     }
   }
   [[nodiscard]] bool enabled() const { return enabled_; }
@@ -45,9 +44,18 @@ class MorrisWalls {
   /// the kernel support h.
   [[nodiscard]] double beta(const double* xi, std::uint32_t j, double h) const {
     const auto& reg = regions_[static_cast<std::size_t>(region_[j])];
-    double di = 0;
-    for (int a = 0; a < 3; ++a) di += reg.inward_normal[a] * (xi[a] - reg.surface_point[a]);
-    return std::min(1.5, 1.0 + depth_[j] / std::max(di, 1e-3 * h));
+    return std::min(1.5, 1.0 + depth_[j] / std::max(signed_distance(reg, xi), 1e-3 * h));
+  }
+  /// Distance of x from the region's wall surface, positive on the fluid side.
+  [[nodiscard]] static double signed_distance(const WallRegion& reg, const double* x) {
+    double d = 0;
+    if (reg.surface_radius > 0) {
+      for (int a = 0; a < 3; ++a)
+        d += (x[a] - reg.surface_point[a]) * (x[a] - reg.surface_point[a]);
+      return std::sqrt(d) - reg.surface_radius;
+    }
+    for (int a = 0; a < 3; ++a) d += reg.inward_normal[a] * (x[a] - reg.surface_point[a]);
+    return d;
   }
   [[nodiscard]] std::size_t bytes() const {
     return region_.capacity() * sizeof(std::int32_t) + depth_.capacity() * sizeof(double);

@@ -143,8 +143,9 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
     w->set_region(p.region);
     for (int a = 0; a < 3; ++a) {
       w->add_point(p.point[a]);
-      w->add_normal(p.normal[a]);
+      if (p.radius == 0) w->add_normal(p.normal[a]);
     }
+    w->set_radius(p.radius);
     regions_used.insert(p.region);
   }
   add_regions(scene, regions_used, m->mutable_regions());

@@ -19,7 +19,8 @@ constexpr std::array<std::string_view, 17> kFluidKeys{
     "sound_speed", "shear_viscosity",  "temperature",     "gravity",    "density_mode",
     "boussinesq",  "max_time_step",    "force_time_step", "parameters", "open_boundary",
     "wall_model",  "wall_planes"};
-constexpr std::array<std::string_view, 3> kPlaneKeys{"region", "point", "normal"};
+constexpr std::array<std::string_view, 5> kPlaneKeys{"region", "point", "normal", "center",
+                                                     "radius"};
 constexpr std::array<std::string_view, 8> kOpenKeys{
     "axis", "inlet", "outlet", "profile", "mean_velocity", "max_velocity", "walls", "cross_axis"};
 constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
@@ -85,8 +86,9 @@ std::string backends_with(bool (*has)(const schema::Backend&)) {
   return s;
 }
 
-/// fluid.wall_planes: [{region, point, normal}], only (and at least one) with wall_model morris.
-/// The region names are checked once the regions are read (check_wall_planes).
+/// fluid.wall_planes: [{region, point, normal}] (a plane) or [{region, center, radius}] (a
+/// circle in 2D, a sphere in 3D, the fluid outside), only (and at least one) with wall_model
+/// morris. The region names are checked once the regions are read (check_wall_planes).
 void read_wall_planes(SceneContext& ctx, const Field& f) {
   YamlReader& r = ctx.reader;
   FluidSettings& fl = ctx.scene.fluid;
@@ -96,7 +98,7 @@ void read_wall_planes(SceneContext& ctx, const Field& f) {
     if (morris) {
       r.error(planes,
               "missing; wall_model morris needs the wall surface of each wall region: "
-              "[{region, point, normal}] (docs/scene-format.md)");
+              "[{region, point, normal}] or [{region, center, radius}] (docs/scene-format.md)");
     }
     return;
   }
@@ -111,6 +113,28 @@ void read_wall_planes(SceneContext& ctx, const Field& f) {
     if (!r.expect_map(e, kPlaneKeys)) continue;
     WallPlane p;
     const auto region = r.string(e, "region", true);
+    if (YamlReader::present(YamlReader::child(e, "radius"))) {
+      // A curved surface: a circle (sphere) around center, the wall inside it.
+      for (const char* k : {"point", "normal"}) {
+        const Field extra = YamlReader::child(e, k);
+        if (YamlReader::present(extra)) {
+          r.error(extra,
+                  "not with radius (a surface is {region, point, normal}, a plane, or "
+                  "{region, center, radius}, a circle or sphere)");
+        }
+      }
+      const auto center = r.vector(e, "center", d, "length", true);
+      const auto radius = r.number(e, "radius", Bound::kPositive, "length", true);
+      if (!region || !center || !radius) continue;
+      p.region = *region;
+      p.point = *center;
+      p.radius = *radius;
+      fl.wall_planes.push_back(std::move(p));
+      continue;
+    }
+    if (const Field c = YamlReader::child(e, "center"); YamlReader::present(c)) {
+      r.error(c, "only with radius (a circle or sphere: {region, center, radius})");
+    }
     const auto point = r.vector(e, "point", d, "length", true);
     const auto normal = r.vector(e, "normal", d, "dimensionless", true);
     if (!region || !point || !normal) continue;

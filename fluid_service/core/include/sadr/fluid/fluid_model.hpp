@@ -44,8 +44,12 @@ struct WallRegion {
   std::array<double, 3> hi{0, 0, 0};     ///< [length]
   /// Unit normal pointing from the wall into the fluid (kNeumann walls, Morris walls).
   std::array<double, 3> inward_normal{1, 0, 0};
-  /// A point on the (planar) wall surface [length]; used by WallModel::kMorrisExtrapolated.
+  /// A point on the wall surface (the centre if surface_radius > 0) [length]; used by
+  /// WallModel::kMorrisExtrapolated.
   std::array<double, 3> surface_point{0, 0, 0};
+  /// 0: the surface is the plane through surface_point normal to inward_normal; > 0: a circle
+  /// (2D) / sphere (3D) of this radius around surface_point, the fluid outside [length].
+  double surface_radius = 0.0;
 };
 
 /// Velocity boundary condition of the wall particles (no-slip in both cases).
@@ -53,7 +57,8 @@ enum class WallModel {
   kStationary,          ///< wall particles keep v = 0 (the default; docs/method.md section 2)
   kMorrisExtrapolated,  ///< Morris, Fox & Zhu 1997: in the viscous term of a fluid-wall pair the
                         ///< wall velocity is -(d_j/d_i) v_i, i.e. v_ij = beta v_i with
-                        ///< beta = min(1.5, 1 + d_j/d_i), d = distance to the region's wall plane
+                        ///< beta = min(1.5, 1 + d_j/d_i), d = distance to the region's wall
+                        ///< surface (plane, circle or sphere)
 };
 
 /// One chemical species carried by the particles.

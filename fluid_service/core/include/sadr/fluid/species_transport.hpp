@@ -34,13 +34,18 @@ class SpeciesTransport {
   /// C_i + (q/kappa) x_ij . n_in for a Neumann wall j, skipped for a no-flux wall j.
   /// @param i a non-wall particle; @param k_ij DiffusionTerm coefficient [1/length^2];
   /// @param x_ij x_i - x_j (minimum image), 3 doubles.
+  /// @param dirichlet_beta for a Dirichlet wall j, C_j is replaced by the extrapolated ghost
+  /// value C_j + (beta - 1)(C_j - C_i), i.e. the pair term is multiplied by beta (Morris walls:
+  /// the held value then sits on the wall surface; 1 = the held value at the particle).
   void add_pair(std::size_t i, std::size_t j, double k_ij, const double* x_ij,
-                const std::vector<std::vector<double>>& c,
-                std::vector<std::vector<double>>& dc) const {
+                const std::vector<std::vector<double>>& c, std::vector<std::vector<double>>& dc,
+                double dirichlet_beta = 1.0) const {
     for (const int s : transported_) {
       const Role rj = roles_[s][j];
-      if (rj == Role::kFree || rj == Role::kDirichlet) {
+      if (rj == Role::kFree) {
         dc[s][i] += k_ij * two_kappa_[s] * (c[s][j] - c[s][i]);
+      } else if (rj == Role::kDirichlet) {
+        dc[s][i] += dirichlet_beta * k_ij * two_kappa_[s] * (c[s][j] - c[s][i]);
       } else if (rj == Role::kNeumann) {
         const auto& n = normal_[region_[j]];
         const double xn = x_ij[0] * n[0] + x_ij[1] * n[1] + x_ij[2] * n[2];

@@ -108,11 +108,13 @@ struct Boussinesq {
   std::array<double, 3> direction{0.0, 1.0, 0.0};  ///< unit vector
 };
 
-/// A planar wall surface of a region of wall particles (fluid.wall_planes; Morris walls).
+/// The wall surface of a region of wall particles (fluid.wall_planes; Morris walls): a plane,
+/// or with radius > 0 a circle (2D) / sphere (3D) around `point` with the fluid outside.
 struct WallPlane {
   std::string region;
-  std::array<double, 3> point{};   ///< a point on the surface [length]
-  std::array<double, 3> normal{};  ///< unit normal from the wall into the fluid
+  std::array<double, 3> point{};   ///< a point on the plane, or the centre [length]
+  std::array<double, 3> normal{};  ///< plane: unit normal from the wall into the fluid
+  double radius = 0.0;             ///< > 0: circle / sphere of this radius [length]
 };
 
 struct FluidSettings {
