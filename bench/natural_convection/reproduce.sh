@@ -4,8 +4,10 @@
 # N = 10 and N = 100 molecules per particle to t = 50 (one thread each, two at a time), then
 # analyse.py (steady-state criterion, window averages), table.py and plots.py.
 # 5 runs x 250-600 s of CPU (one core each); the runs already present in OUT are reused (delete to
-# redo). The docs' table came from runs stopped at t = 52.5 (Ra = 1e5, 1e6) and t = 34 (N = 100):
-# the windows here end at 50 instead.
+# redo). In the docs' table only the deterministic Ra = 1e4 row is a run of the current scene (Morris
+# walls) to t = 50; the others are runs of the scenes' previous versions (stationary walls, c0 = 3.5
+# at Ra >= 1e5) stopped at t = 52.5 (Ra = 1e5, 1e6) and t = 34 (N = 100): this script runs the current
+# scenes, with windows ending at 50. It has not been run end to end (about 45 CPU minutes).
 #
 #   bench/natural_convection/reproduce.sh BIN_DIR OUT
 set -euo pipefail

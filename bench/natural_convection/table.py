@@ -2,7 +2,10 @@
 """The docs table of steady, averaged natural-convection runs (docs/natural-convection.md), from
 analyse.py --json outputs, beside drawert2019's Table 2 and the continuum reference's own floor.
 
-    /usr/bin/python3 bench/natural_convection/table.py A.json [B.json ...]
+    /usr/bin/python3 bench/natural_convection/table.py A.json[=NOTE] [B.json[=NOTE] ...]
+
+NOTE (optional) is appended to the row's variant, e.g. "stationary walls, c0 = 3.5" for a run of
+an older version of the scene.
 
 Errors in drawert2019's metric ||f - f_ref||_2 / n on the digitised points (n as in the paper's
 Table 2): against the digitised Moukalled & Acharya profiles, and against the continuum reference
@@ -26,9 +29,11 @@ def main():
     floor = load(os.path.join(HERE, "..", "..", "tests", "data", "refs", "natural_convection",
                               "continuum_vs_digitised.csv"))
     rows = []
-    for p in sys.argv[1:]:
+    for arg in sys.argv[1:]:
+        p, _, note = arg.partition("=")
         with open(p) as f:
             a = json.load(f)
+        a["note"] = note
         if "score" not in a:
             sys.exit("%s: not steady by the criterion and no --from: no averaged row" % p)
         rows.append(a)
@@ -46,6 +51,8 @@ def main():
         for a in [a for a in rows if a["Ra"] == ra]:
             s = a["score"]
             var = "SSA, N = %g, %d real." % (a["molecules"], a["realizations"]) if a["molecules"] else "SDPD"
+            if a["note"]:
+                var += ", " + a["note"]
             nu = s["Nu_half"] / s["Nu_half_reference"] - 1
             ts = "%g" % max(a["t_steady"]) if a["steady"] else "not steady (last rates E/Nu_c/Nu_e %s); --from %g" % (
                 "/".join("%.0e" % v for r in a["last_rates"].values() for v in r.values()), a["window"][0])

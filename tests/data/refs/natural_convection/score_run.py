@@ -164,12 +164,33 @@ def measure(fr, case, h, dx):
     return out
 
 
+NEAR_WALL = 0.05  # width of the near-wall zones of score() [L]
+
+
+def near_wall_zones(x):
+    """Masks of the centre-line points x in (0.6, 1): next to the cylinder, in the bulk, next to the
+    right wall."""
+    return {"cylinder": x < 0.6 + NEAR_WALL, "bulk": (x >= 0.6 + NEAR_WALL) & (x <= 1.0 - NEAR_WALL),
+            "wall": x > 1.0 - NEAR_WALL}
+
+
 def score(avg, case):
     """The errors of (averaged) measurements `avg` (as from measure) against both references."""
     out = {"Ra": case.ra, "reference_mesh": case.mesh}
     for q in ("theta", "vstar"):
         out[q + "_err_ref"] = paper_metric(avg[q + "_ref"] - case.ref[q])
         out[q + "_maxabs_ref"] = float(np.max(np.abs(avg[q + "_ref"] - case.ref[q])))
+    # where the errors sit: rms and max of f - f_ref on the reference's points within NEAR_WALL
+    # of the cylinder surface (x = 0.6) and of the right wall (x = 1), and in the bulk between
+    for zone, sel in near_wall_zones(case.x_ref).items():
+        for q in ("theta", "vstar"):
+            d = avg[q + "_ref"][sel] - case.ref[q][sel]
+            out["%s_rms_%s" % (q, zone)] = float(np.sqrt(np.mean(d * d)))
+            out["%s_maxabs_%s" % (q, zone)] = float(np.max(np.abs(d)))
+    # the two v* peaks (near the cylinder, near the right wall) against the reference's
+    for zone, sel in (("cylinder", case.x_ref < 0.8), ("wall", case.x_ref >= 0.8)):
+        out["vstar_peak_%s" % zone] = float(np.max(np.abs(avg["vstar_ref"][sel])))
+        out["vstar_peak_%s_reference" % zone] = float(np.max(np.abs(case.ref["vstar"][sel])))
     for q in ("theta", "vstar"):
         out[q + "_err_digitised"] = paper_metric(avg[q + "_dig"] - case.dig[q])
         # the continuum reference at the digitised points: the same n as the paper's metric

@@ -2,7 +2,8 @@
 """Reduced natural-convection validation (ctest -L validation: natural_convection_reduced).
 
 Runs the coarse deterministic scene (tests/data/scenes/natural_convection_ra1e4_coarse.yaml:
-41^2 lattice points in the enclosure, h = 3 dx, Ra = 1e4, SDPD-transported theta, frames every 2)
+41^2 lattice points in the enclosure, h = 3 dx, Ra = 1e4, SDPD-transported theta, Morris walls
+extrapolating velocity and theta on the cylinder and the enclosure, frames every 2)
 with `sadr run`, applies the steady-state criterion of bench/natural_convection/analyse.py (relative
 rates of change of the kinetic energy and of the Nusselt numbers below --threshold per unit time over
 a 10-unit window), averages the frames from the steady time to the end, scores the average against
@@ -15,9 +16,10 @@ the continuum reference with score_run.py, and fails unless
     max |rho / rho_0 - 1| over the fluid             <= 0.01 (weak compressibility)
 
 The run is deterministic (no thermal noise, no SSA), so the measured figures are reproducible;
-the tolerances are the figures measured on 2026-12-01 times 1.3 (docs/natural-convection.md;
-measured: steady from t = 22 at --threshold 2e-3, averaged 22-40: theta 0.00243, v* 0.0868,
-|Nu/Nu_ref - 1| 0.084, max |rho - 1| 0.0079). The coarse run's kinetic energy fluctuates by about 1 %
+the tolerances are the figures measured on 2026-12-02 times 1.3 (docs/natural-convection.md;
+measured: steady from t = 24 at --threshold 2e-3, averaged 24-40: theta 0.00143, v* 0.0707,
+|Nu/Nu_ref - 1| 0.038, max |rho - 1| 0.0069; with the stationary wall model, which the
+tolerances now refuse: theta 0.00243, v* 0.0868, 0.084). The coarse run's kinetic energy fluctuates by about 1 %
 (particle disorder), so the test uses 2e-3 per unit time rather than the docs' 1e-3.
 
     /usr/bin/python3 validate_reduced.py --sadr build/ci/bin/sadr
