@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "sadr/common/status.hpp"
@@ -30,6 +31,16 @@ CellListBuilder::CellListBuilder(const Box& box, double cutoff) : pbox_(box), cu
         std::clamp(std::floor(kCellReach * len / cutoff), 1.0, static_cast<double>(1 << 20)));
     inv_cell_[a] = ncell_[a] / len;
   }
+}
+
+std::size_t CellListBuilder::expected_entries(std::size_t n) const {
+  const Box& box = pbox_.box();
+  double volume = 1, ball = 2 * cutoff_;  // 1D: a segment of length 2 rc
+  for (int a = 0; a < box.dimension; ++a) volume *= box.length(a);
+  if (box.dimension == 2) ball = std::numbers::pi * cutoff_ * cutoff_;
+  if (box.dimension == 3) ball = 4.0 / 3.0 * std::numbers::pi * cutoff_ * cutoff_ * cutoff_;
+  const double e = static_cast<double>(n) * std::min(static_cast<double>(n), n * ball / volume);
+  return std::isfinite(e) && e > 0 ? static_cast<std::size_t>(std::min(e, 1e12)) : 0;
 }
 
 void CellListBuilder::build(std::span<const double> positions, NeighborList& out) const {
@@ -132,15 +143,24 @@ void CellListBuilder::build(std::span<const double> positions, NeighborList& out
   // thread appends its static, contiguous range of particles to its own buffer, then the
   // buffers are copied behind the prefix sum. Lists are sorted, so the result is the same for
   // any thread count.
+  //
+  // Memory: the old list is released first (build never reads it), and each buffer is reserved
+  // from the expected count (density x cutoff ball, + 1/8) so it rarely grows by doubling, which
+  // held the old and the new block at once. With one thread, the buffer becomes the list.
+  const std::size_t expected = expected_entries(n);
+  std::vector<std::uint32_t>().swap(out.indices);
   out.offsets.assign(n + 1, 0);
   const auto ni = static_cast<std::int64_t>(n);
-  const auto nt = static_cast<std::size_t>(max_threads());
+  const auto nt = static_cast<std::size_t>(ni > kMinParallel ? max_threads() : 1);
   std::vector<std::vector<std::uint32_t>> buf(nt);
   std::vector<std::int64_t> first(nt, ni);
 #pragma omp parallel if (ni > kMinParallel)
   {
     const auto t = static_cast<std::size_t>(thread_index());
     std::vector<std::uint32_t>& mine = buf[t];
+    // + one particle's candidates (about 4x its neighbours): the scan's last resize stays inside
+    mine.reserve(expected / nt + expected / (8 * nt) + 4 * expected / std::max<std::size_t>(n, 1) +
+                 64);
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < ni; ++i) {
       if (first[t] == ni) first[t] = i;
@@ -153,9 +173,13 @@ void CellListBuilder::build(std::span<const double> positions, NeighborList& out
 #pragma omp single
     {
       for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
-      out.indices.resize(out.offsets[n]);
+      if (nt == 1) {
+        out.indices = std::move(buf[0]);
+      } else {
+        out.indices.resize(out.offsets[n]);
+      }
     }
-    if (!mine.empty()) {
+    if (nt > 1 && !mine.empty()) {
       std::copy(mine.begin(), mine.end(),
                 out.indices.begin() + out.offsets[static_cast<std::size_t>(first[t])]);
     }

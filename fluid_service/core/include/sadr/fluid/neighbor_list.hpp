@@ -43,6 +43,9 @@ class CellListBuilder {
   /// Cells of width >= cutoff/2 and a 5^D stencil: 5^3/8 = 15.6 cutoff^3 of candidates per
   /// particle instead of 27 cutoff^3 with cutoff-wide cells (3D), 6.25 instead of 9 (2D).
   static constexpr int kCellReach = 2;
+  /// Expected list entries for n uniformly spread particles (n x density x cutoff ball, at most
+  /// n^2): the buffers' reservation, so they seldom grow by doubling.
+  [[nodiscard]] std::size_t expected_entries(std::size_t n) const;
   PeriodicBox pbox_;
   double cutoff_;
   std::array<int, 3> ncell_{1, 1, 1};
