@@ -141,26 +141,29 @@ void CellListBuilder::build(std::span<const double> positions, NeighborList& out
   };
   // One scan per particle (a counting pass and a filling pass scanned every cell twice): each
   // thread appends its static, contiguous range of particles to its own buffer, then the
-  // buffers are copied behind the prefix sum. Lists are sorted, so the result is the same for
+  // buffers are placed behind the prefix sum. Lists are sorted, so the result is the same for
   // any thread count.
   //
-  // Memory: the old list is released first (build never reads it), and each buffer is reserved
-  // from the expected count (density x cutoff ball, + 1/8) so it rarely grows by doubling, which
-  // held the old and the new block at once. With one thread, the buffer becomes the list.
+  // Memory: the old list is released first (build never reads it), and the buffers are reserved
+  // from the expected count (density x cutoff ball, + 1/8) so they rarely grow by doubling, which
+  // held the old and the new block at once. Thread 0's buffer (the front of the list, reserved
+  // for all of it) becomes the list; the others are copied behind it.
   const std::size_t expected = expected_entries(n);
   std::vector<std::uint32_t>().swap(out.indices);
   out.offsets.assign(n + 1, 0);
   const auto ni = static_cast<std::int64_t>(n);
-  const auto nt = static_cast<std::size_t>(ni > kMinParallel ? max_threads() : 1);
+  const auto nt = static_cast<std::size_t>(max_threads());
   std::vector<std::vector<std::uint32_t>> buf(nt);
   std::vector<std::int64_t> first(nt, ni);
+  bool adopted = false;
 #pragma omp parallel if (ni > kMinParallel)
   {
     const auto t = static_cast<std::size_t>(thread_index());
+    const auto team = static_cast<std::size_t>(team_size());
     std::vector<std::uint32_t>& mine = buf[t];
     // + one particle's candidates (about 4x its neighbours): the scan's last resize stays inside
-    mine.reserve(expected / nt + expected / (8 * nt) + 4 * expected / std::max<std::size_t>(n, 1) +
-                 64);
+    const std::size_t share = t == 0 ? expected : expected / team;
+    mine.reserve(share + share / 8 + 4 * expected / std::max<std::size_t>(n, 1) + 64);
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < ni; ++i) {
       if (first[t] == ni) first[t] = i;
@@ -173,13 +176,11 @@ void CellListBuilder::build(std::span<const double> positions, NeighborList& out
 #pragma omp single
     {
       for (std::size_t i = 0; i < n; ++i) out.offsets[i + 1] += out.offsets[i];
-      if (nt == 1) {
-        out.indices = std::move(buf[0]);
-      } else {
-        out.indices.resize(out.offsets[n]);
-      }
+      adopted = first[0] == 0 || buf[0].empty();  // thread 0's lists start the whole list
+      if (adopted) out.indices = std::move(buf[0]);
+      out.indices.resize(out.offsets[n]);
     }
-    if (nt > 1 && !mine.empty()) {
+    if (!(t == 0 && adopted) && !mine.empty()) {
       std::copy(mine.begin(), mine.end(),
                 out.indices.begin() + out.offsets[static_cast<std::size_t>(first[t])]);
     }

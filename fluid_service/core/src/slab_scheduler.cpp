@@ -63,8 +63,8 @@ void SlabScheduler::partition_and_filter(const PeriodicBox& box, int axis, doubl
   p.members.resize(n);
   std::vector<std::uint32_t> fill(p.start.begin(), p.start.end() - 1);
   for (std::size_t i = 0; i < n; ++i) p.members[fill[slab_of[i]]++] = static_cast<std::uint32_t>(i);
-  // Keep only the forward pairs, in place: every pair is listed once, which halves the list
-  // memory (and the pair loops need no slab test per entry).
+  // Keep only the forward pairs, in place: every pair is listed once, which halves the entries
+  // the pair loops read (and they need no slab test per entry).
   std::uint32_t out = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t s = slab_of[i];
@@ -85,8 +85,9 @@ void SlabScheduler::partition_and_filter(const PeriodicBox& box, int axis, doubl
                            {{"quantity", "neighbour list"}});
   }
   list.offsets[n] = out;
+  // No shrink_to_fit: its copy would hold the half list beside the full one, the process peak
+  // (issue 20); the next build releases this block before it allocates.
   list.indices.resize(out);
-  list.indices.shrink_to_fit();
   set(std::move(p), list);
 }
 
