@@ -1,67 +1,25 @@
 // SPDX-License-Identifier: MIT
 /// \file fluid_memory_probe.cpp
 /// Where the SDPD process peak memory is (issue 20): a counting global operator new/delete
-/// tracks the live heap bytes and their peak per phase (lattice, initialize, first advance,
-/// further advances), and one neighbour-list build on its own (its transient peak and what it
-/// keeps). Bench-only: the counting allocator would perturb fluid_bench's timings.
-/// Usage: fluid_memory_probe D N [steps]   (one thread; prints bytes per particle)
-#include <malloc.h>
-
-#include <atomic>
+/// (bench/common/heap_counter) tracks the live heap bytes and their peak per phase (lattice,
+/// initialize, first advance, further advances), and one neighbour-list build on its own (its
+/// transient peak and what it keeps). Bench-only: the counting allocator would perturb
+/// fluid_bench's timings. Usage: fluid_memory_probe D N [steps]   (one thread; prints bytes per
+/// particle)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <new>
-#include <vector>
 
 #include "fluid_test_scenes.hpp"
+#include "heap_counter.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
 #include "sdpd/sdpd_backend.hpp"
 #ifdef SADR_HAVE_OPENMP
 #include <omp.h>
 #endif
 
-namespace {
-std::atomic<long long> g_live{0}, g_peak{0};
-void note(void* p) {
-  if (!p) return;
-  const long long now = g_live.fetch_add(static_cast<long long>(malloc_usable_size(p))) +
-                        static_cast<long long>(malloc_usable_size(p));
-  long long pk = g_peak.load();
-  while (now > pk && !g_peak.compare_exchange_weak(pk, now)) {
-  }
-}
-void* counted_alloc(std::size_t n) {
-  void* p = std::malloc(n == 0 ? 1 : n);
-  if (!p) throw std::bad_alloc();
-  note(p);
-  return p;
-}
-void counted_free(void* p) noexcept {
-  if (!p) return;
-  g_live.fetch_sub(static_cast<long long>(malloc_usable_size(p)));
-  std::free(p);
-}
-}  // namespace
-
-void* operator new(std::size_t n) {
-  return counted_alloc(n);
-}
-void* operator new[](std::size_t n) {
-  return counted_alloc(n);
-}
-void operator delete(void* p) noexcept {
-  counted_free(p);
-}
-void operator delete[](void* p) noexcept {
-  counted_free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  counted_free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  counted_free(p);
-}
+using sadr::bench::heap_live;
+using sadr::bench::heap_phase;
 
 int main(int argc, char** argv) {
   if (argc < 3) {
@@ -81,7 +39,7 @@ int main(int argc, char** argv) {
   ls.n = {side, dim > 1 ? side : 1, dim > 2 ? side : 1};
   ls.dx = 1.0;
   sadr::fluid::FluidModel m;
-  long long base = g_live.load();
+  const long long base = heap_live();
   sadr::ParticleState p = sadr::fluid::test::make_lattice(ls, m.box);
   m.smoothing_length = 3.0;
   m.sound_speed = 10.0;
@@ -94,14 +52,8 @@ int main(int argc, char** argv) {
       "%dD %.0f particles, one thread, heap bytes per particle (live = held after, "
       "peak = highest live during)\n",
       dim, np);
-  std::printf("  lattice (the caller's ParticleState)   live %7.1f\n", per(g_live - base));
-  auto phase = [&](const char* name, auto&& fn) {
-    const long long before = g_live.load();
-    g_peak = before;
-    fn();
-    std::printf("  %-38s live %7.1f  peak %7.1f  (peak above the start %7.1f)\n", name,
-                per(g_live - base), per(g_peak - base), per(g_peak - before));
-  };
+  std::printf("  lattice (the caller's ParticleState)   live %7.1f\n", per(heap_live() - base));
+  auto phase = [&](const char* name, auto&& fn) { heap_phase(name, np, base, fn); };
   sadr::fluid::SdpdBackend b;
   phase("initialize", [&] { b.initialize(m, p, {}); });
   phase("advance 0 (first list build)", [&] { b.advance(0, 0.02); });
