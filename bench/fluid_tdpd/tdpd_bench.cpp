@@ -5,11 +5,12 @@
 /// particles and 1, 4, 25 species, next to LAMMPS `pair tdpd` measured on this machine
 /// (233k particle-steps/CPU-s with 1 species, 112k with 4).
 /// Usage: fluid_tdpd_bench [out.json] [--quick] [--small|--large] [--uniform] [--skin S]
-///   [--steps K]  (OMP_NUM_THREADS=1)
+///   [--steps K] [--species N]  (OMP_NUM_THREADS=1)
 ///   --quick: 5 timed steps; --small / --large: only the ~1e4- / ~1e5-particle configurations;
 ///   --uniform: FluidModel::noise = kUniform (uniform pair noise of unit variance);
 ///   --skin S: tdpd.skin (Verlet skin / r_c; default: the backend's); --steps K: warm-up steps
-///   before timing (default 20; more steps let the particles mix, as in a long run).
+///   before timing (default 20; more steps let the particles mix, as in a long run);
+///   --species N: only the N-species runs (bench/peers/side_by_side.py --memory: 1 species).
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -105,6 +106,7 @@ int main(int argc, char** argv) {
   bool uniform = false;
   double skin = 0.0;
   int warmup = 20;
+  int only_species = 0;  // 0: all of 1, 4, 25
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--quick") {
@@ -119,6 +121,8 @@ int main(int argc, char** argv) {
       skin = std::stod(argv[++i]);
     } else if (arg == "--steps" && i + 1 < argc) {
       warmup = std::stoi(argv[++i]);
+    } else if (arg == "--species" && i + 1 < argc) {
+      only_species = std::stoi(argv[++i]);
     } else {
       out = arg;
     }
@@ -128,6 +132,7 @@ int main(int argc, char** argv) {
   for (const int per_axis : {22, 46}) {  // 10648 and 97336 particles
     if ((small_only && per_axis > 22) || (large_only && per_axis == 22)) continue;
     for (const int ns : {1, 4, 25}) {
+      if (only_species > 0 && ns != only_species) continue;
       const int steps = quick ? 5 : (per_axis == 22 ? 100 : 20);
       res.push_back(run(per_axis, ns, steps, uniform, skin, warmup));
       const auto& r = res.back();

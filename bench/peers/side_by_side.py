@@ -28,6 +28,8 @@ of the timed loop; URDME's driver reports process CPU of the nsm() call minus an
 
 --memory: process peak RSS (ru_maxrss of the reaped process) at two sizes per case; the slope
 is bytes per particle / per voxel (the binary and libraries drop out). Not load-sensitive.
+Cases: SDPD 3D / 2D (fluid_bench --case, 2 steps), tDPD 1 species (fluid_tdpd_bench --species 1
+--quick, 10648 and 97336 particles; LAMMPS the tdpd deck, 2 + 5 steps), NSM (ssa_bench a).
 
 The peers are not part of this repository and are never committed; this script only writes our
 own input decks. The URDME driver's contract: `DRIVER N_SIDE MOLECULES REACTIONS(0|1) EVENTS
@@ -245,6 +247,23 @@ def memory(a, work):
                     "peer_name": "LAMMPS", "sizes": [o[3], o[4]],
                     "ours_peak_kib": [o[1], o[2]], "peer_peak_kib": [p[1], p[2]]})
         print(f"  memory {name}: ours {o[0]:.0f} B/particle, LAMMPS {p[0]:.0f}", flush=True)
+    def ours_tdpd(side):
+        size = "--small" if side == 22 else "--large"
+        r = run_measured([a.build / "bench/fluid_tdpd/fluid_tdpd_bench", work / "tdpd_mem.json",
+                          "--quick", size, "--species", 1, "--steps", 2], env=env1())
+        return side ** 3, r["maxrss_kib"]
+
+    def peer_tdpd(side):
+        deck = TDPD_DECK.format(n=side, warmup=2, steps=5)
+        _, atoms, r = lammps_rate(a.lammps, deck, work, f"memtdpd_{side}")
+        return atoms, r["maxrss_kib"]
+
+    o = slope(ours_tdpd, (22, 46))
+    p = slope(peer_tdpd, (22, 46))
+    out.append({"case": "tDPD 1 species, bytes per particle (rho = 4, r_c = 1.58)", "ours": o[0],
+                "peer": p[0], "peer_name": "LAMMPS", "sizes": [o[3], o[4]],
+                "ours_peak_kib": [o[1], o[2]], "peer_peak_kib": [p[1], p[2]]})
+    print(f"  memory tDPD: ours {o[0]:.0f} B/particle, LAMMPS {p[0]:.0f}", flush=True)
     o = slope(ours_ssa, (32, 64))
     p = slope(peer_ssa, (32, 64))
     out.append({"case": "NSM, bytes per voxel (case (a) lattice, 32^3 -> 64^3, 3 molecules/voxel)",
