@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "fluid_test_scenes.hpp"
+#include "fluid_bench_case.hpp"
 #include "sadr/common/openmp_env.hpp"
 #include "sdpd/sdpd_backend.hpp"
 #ifdef SADR_HAVE_OPENMP
@@ -72,19 +72,8 @@ Result run_case(int dim, long n_target, int threads, int species, int steps,
 #else
   threads = 1;
 #endif
-  sadr::fluid::test::LatticeSpec ls;
-  ls.dimension = dim;
-  const int side =
-      static_cast<int>(std::lround(std::pow(static_cast<double>(n_target), 1.0 / dim)));
-  ls.n = {side, dim > 1 ? side : 1, dim > 2 ? side : 1};
-  ls.dx = 1.0;
   FluidModel m;
-  sadr::ParticleState p = sadr::fluid::test::make_lattice(ls, m.box);
-  m.smoothing_length = 3.0;
-  m.sound_speed = 10.0;
-  m.shear_viscosity = 1.0;
-  m.temperature = 0.01;
-  m.seed = 1;
+  sadr::ParticleState p = sadr::fluid::bench::bench_case(dim, n_target, m);
   if (const char* e = std::getenv("SADR_BENCH_NOISE")) {  // diagnostics: off | uniform
     if (std::strcmp(e, "off") == 0) m.temperature = 0.0;
     if (std::strcmp(e, "uniform") == 0) m.noise = sadr::fluid::NoiseDistribution::kUniform;

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "fluid_test_scenes.hpp"
+#include "fluid_bench_case.hpp"
 #include "heap_counter.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
 #include "sdpd/sdpd_backend.hpp"
@@ -32,20 +32,9 @@ int main(int argc, char** argv) {
   const int dim = std::atoi(argv[1]);
   const long n_target = std::atol(argv[2]);
   const int steps = argc > 3 ? std::atoi(argv[3]) : 2;
-  sadr::fluid::test::LatticeSpec ls;  // fluid_bench's case: h = 3 dx, T = 0.01
-  ls.dimension = dim;
-  const int side =
-      static_cast<int>(std::lround(std::pow(static_cast<double>(n_target), 1.0 / dim)));
-  ls.n = {side, dim > 1 ? side : 1, dim > 2 ? side : 1};
-  ls.dx = 1.0;
   sadr::fluid::FluidModel m;
   const long long base = heap_live();
-  sadr::ParticleState p = sadr::fluid::test::make_lattice(ls, m.box);
-  m.smoothing_length = 3.0;
-  m.sound_speed = 10.0;
-  m.shear_viscosity = 1.0;
-  m.temperature = 0.01;
-  m.seed = 1;
+  sadr::ParticleState p = sadr::fluid::bench::bench_case(dim, n_target, m);
   const double np = static_cast<double>(p.size());
   auto per = [np](long long b) { return static_cast<double>(b) / np; };
   std::printf(
