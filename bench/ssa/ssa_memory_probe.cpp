@@ -57,6 +57,8 @@ int main(int argc, char** argv) {
       cap(g.edges), static_cast<double>(g.edges.size()) / nv, sizeof(g.edges[0]), cap(g.row_start),
       cap(g.split), cap(g.sum_all), cap(g.sum_nowall), cap(g.volume), cap(g.is_wall), cap(g.kind),
       cap(g.wall_distance));
+  std::printf("graph builder: %.2f candidates per voxel (4 B each; its other arrays are private)\n",
+              static_cast<double>(s.state().graph_builder().candidate_count()) / nv);
   std::printf(
       "the caller's ParticleState: positions %.1f, velocities %.1f, masses %.1f, "
       "densities %.1f\n",
