@@ -16,6 +16,9 @@ Backend tdpd_backend() {
   // tdpd_rates.cpp integrates no wall particle (their concentrations never change) and
   // effective walls turn `free` into no flux, so wall reactions and `free` walls are refused.
   b.capabilities.wall_species_terms = false;
+  // Its species step (tdpd_rates.cpp) has no per-particle boundary source and its Neumann flux
+  // lives on the effective walls: boundary fluxes of deterministic species are refused.
+  b.capabilities.boundary_fluxes = false;
   b.memory = {{710, 710, 820}, 570};  // measured 2D 705, 3D 818 B; sadr 556-566 B
   b.parameters = {
       {"a", "force", 18.75, 0.0, inf, false, false, "conservative force amplitude a_ij"},

@@ -116,6 +116,19 @@ void FluidModel::validate() const {
     };
     check_side(re.reactants, "reactants");
     check_side(re.products, "products");
+    if (!re.boundary_area.empty()) {
+      if (!re.law) p.add_text(f + ".boundary_area", "a boundary flux needs a law");
+      if (re.boundary_area.size() != re.particles.size()) {
+        p.add(f + ".boundary_area size", static_cast<double>(re.boundary_area.size()),
+              "must equal particles' size " + std::to_string(re.particles.size()));
+      }
+      for (std::size_t k = 0; k < re.boundary_area.size(); ++k) {
+        if (!(re.boundary_area[k] > 0 && std::isfinite(re.boundary_area[k]))) {
+          p.add(f + ".boundary_area[" + std::to_string(k) + "]", re.boundary_area[k],
+                "must be finite and > 0");
+        }
+      }
+    }
     if (re.law) {
       std::vector<std::string> names;
       for (const auto& sp : species) names.push_back(sp.name);

@@ -103,6 +103,13 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
         site(i);
       }
     }
+    if (!re.boundary_area.empty()) {  // a boundary flux: j A_i / V_i (sizes: validate())
+      cr.scale.assign(n, 0.0);
+      for (std::size_t k = 0; k < re.particles.size(); ++k) {
+        const std::uint32_t i = re.particles[k];
+        cr.scale[i] = re.boundary_area[k] / state.volume(i);
+      }
+    }
     for (std::size_t i = 0; i < n; ++i) {
       if (!cr.fires[i]) continue;
       reacts_[i] = 1;
@@ -190,7 +197,7 @@ void SpeciesTransport::add_reactions(std::size_t i, const std::vector<std::vecto
   if (!reacts_[i]) return;
   for (const auto& r : reactions_) {
     if (!r.fires[i]) continue;
-    const double v = velocity(r, i, c);
+    const double v = r.scale.empty() ? velocity(r, i, c) : velocity(r, i, c) * r.scale[i];
     for (const auto& [s, d] : r.delta) {
       if (roles_[s][i] != Role::kDirichlet) dc[s][i] += d * v;
     }
@@ -207,7 +214,7 @@ double SpeciesTransport::reaction_rate_scale(const std::vector<std::vector<doubl
     for (const auto& r : reactions_) {
       if (!r.fires[i]) continue;
       if (r.law >= 0) {
-        sum += law_rate_scale(r, i, c);
+        sum += law_rate_scale(r, i, c) * (r.scale.empty() ? 1.0 : r.scale[i]);
         continue;
       }
       for (const auto& t : r.reactants) {

@@ -107,13 +107,13 @@ std::string markdown_parameters(const Backend& b) {
 std::string markdown_capabilities() {
   std::string s =
       "| backend | moves particles | transports species | thermal noise | open boundaries | "
-      "wall species terms | wall models | kernels | requires |\n"
-      "|---|---|---|---|---|---|---|---|---|\n";
+      "wall species terms | boundary fluxes | wall models | kernels | requires |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& b : backends()) {
     const auto& c = b.capabilities;
     s += "| `" + b.name + "` | " + yes(c.moves_particles) + " | " + yes(c.transports_species) +
          " | " + yes(c.thermal_noise) + " | " + yes(c.open_boundaries) + " | " +
-         yes(c.wall_species_terms) + " | " + join(c.wall_models) + " | " + join(c.kernels) + " | " +
+         yes(c.wall_species_terms) + " | " + yes(c.boundary_fluxes) + " | " + join(c.wall_models) + " | " + join(c.kernels) + " | " +
          join(b.required) + " |\n";
   }
   return s;
@@ -128,7 +128,8 @@ std::string describe() {
          ", transports species: " + yes(c.transports_species) +
          ", thermal noise: " + yes(c.thermal_noise) +
          ", open boundaries: " + yes(c.open_boundaries) +
-         ", wall species terms: " + yes(c.wall_species_terms) + "\n";
+         ", wall species terms: " + yes(c.wall_species_terms) +
+         ", boundary fluxes: " + yes(c.boundary_fluxes) + "\n";
     s += "  wall models: " + join(c.wall_models) + "; kernels: " + join(c.kernels) +
          "; requires: " + join(b.required) + "\n";
     s += "  parameters (fluid.parameters):" + std::string(b.parameters.empty() ? " none\n" : "\n");

@@ -63,6 +63,9 @@ void to_proto(const Reaction& in, common::v1::Reaction& out, std::set<std::strin
     out.add_regions(r);
     regions_used.insert(r);
   }
+  out.mutable_boundary_particles()->Assign(in.boundary_particles.begin(),
+                                           in.boundary_particles.end());
+  out.mutable_boundary_areas()->Assign(in.boundary_areas.begin(), in.boundary_areas.end());
 }
 
 template <class RepeatedRegions>

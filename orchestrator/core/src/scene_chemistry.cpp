@@ -348,6 +348,8 @@ std::vector<StoichiometryEntry> read_stoichiometry(SceneContext& ctx, const Fiel
   return out;
 }
 
+}  // namespace
+
 /// Checks the species of a reaction; returns whether they are stochastic
 /// (nullopt if unknown or mixed; reported).
 std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where,
@@ -393,8 +395,6 @@ std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where
   if (!ok) return std::nullopt;
   return stochastic.value_or(true);
 }
-
-}  // namespace
 
 void read_species(SceneContext& ctx, const Field& root) {
   YamlReader& r = ctx.reader;

@@ -73,9 +73,10 @@ std::string scene_name_from_file(const std::filesystem::path& source) {
 
 namespace {
 
-constexpr std::array<std::string_view, 14> kTopKeys{
-    "name",       "description", "dimension", "box",  "regions", "particles", "fluid",
-    "parameters", "species",     "reactions", "time", "output",  "seed",      "ssa"};
+constexpr std::array<std::string_view, 15> kTopKeys{
+    "name",    "description", "dimension", "box",    "regions", "particles",
+    "fluid",   "parameters",  "species",   "reactions", "boundary_fluxes", "time",
+    "output",  "seed",        "ssa"};
 
 void read_box(SceneContext& ctx, const Field& root) {
   YamlReader& r = ctx.reader;
@@ -239,6 +240,7 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   read_species(ctx, root);
   check_parameter_names(ctx, root);
   read_reactions(ctx, root);
+  read_boundary_fluxes(ctx, root);
   read_time_and_output(ctx, root);
   read_ssa(ctx, root);
   check_neighbours(ctx, root);

@@ -60,6 +60,13 @@ void check_open_boundary(SceneContext& ctx);
 void check_wall_planes(SceneContext& ctx, const Field& root);
 void read_species(SceneContext& ctx, const Field& root);
 void read_reactions(SceneContext& ctx, const Field& root);
+/// Top-level "boundary_fluxes" (scene_fluxes.cpp), after read_reactions: each one a reaction
+/// with a law and its boundary particles and areas.
+void read_boundary_fluxes(SceneContext& ctx, const Field& root);
+/// Checks the species of a reaction (declared, one path); returns whether they are
+/// stochastic (nullopt if unknown or mixed; reported at `where`).
+std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where,
+                                           const Reaction& rx, bool has_law);
 /// Top-level "parameters" (scene_laws.cpp): named constants of rate laws.
 void read_parameters(SceneContext& ctx, const Field& root);
 /// Reports parameters that have the name of a species (after read_species).

@@ -90,6 +90,19 @@ void Model::validate() const {
     } else if (order > 2) {
       issues.push_back(f + ": total order = " + std::to_string(order) + " (allowed: 0, 1, 2)");
     }
+    if (!rx.areas.empty()) {
+      if (!rx.law) issues.push_back(f + ".areas: a boundary flux needs a law");
+      if (rx.areas.size() != rx.voxels.size()) {
+        issues.push_back(f + ".areas: " + std::to_string(rx.areas.size()) + " areas for " +
+                         std::to_string(rx.voxels.size()) + " voxels (allowed: one per voxel)");
+      }
+      for (std::size_t k = 0; k < rx.areas.size(); ++k) {
+        if (!(rx.areas[k] > 0 && std::isfinite(rx.areas[k]))) {
+          issues.push_back(f + ".areas[" + std::to_string(k) +
+                           "] = " + format_value(rx.areas[k]) + " (allowed: finite and > 0)");
+        }
+      }
+    }
     for (std::size_t k = 0; k < rx.products.size(); ++k) {
       const std::string fk = f + ".products[" + std::to_string(k) + "]";
       check_species_ref(issues, fk + ".species", rx.products[k].first, ns);
@@ -234,6 +247,10 @@ std::uint64_t Model::fingerprint() const {
     for (auto k : r.kinds) f.pod(k);
     f.pod(-1);
     for (auto v : r.voxels) f.pod(v);
+    if (!r.areas.empty()) {  // absent without a boundary flux: old fingerprints stay valid
+      f.pod(-3);
+      for (auto a : r.areas) f.pod(a);
+    }
     f.pod(-1);
   }
   for (const auto& name : frozen_species) f.str(name);  // none: old fingerprints stay valid

@@ -50,7 +50,9 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
       const bool external =
           law.uses_time() || std::any_of(sp.begin(), sp.end(), [&](int s) { return s >= t.ns_; });
       t.has_external_ = t.has_external_ || external;
-      t.laws_.push_back({std::move(law), rx.reactants, t.reactions_.size() - 1, external});
+      t.laws_.push_back(
+          {std::move(law), rx.reactants, t.reactions_.size() - 1, external, !rx.areas.empty()});
+      if (!rx.areas.empty()) t.volume_ = graph.volume;
       widest = std::max(widest, t.laws_.back().law.species().size());
     }
   }
@@ -69,6 +71,13 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
     if (!rx.law && rx.rate == 0) continue;
     std::fill(in_region.begin(), in_region.end(), rx.voxels.empty() ? 1 : 0);
     for (std::uint32_t v : rx.voxels) in_region[v] = 1;
+    if (!rx.areas.empty()) {  // a boundary flux: c = A_i in its fluid voxels (a = A_i j)
+      for (std::size_t k = 0; k < rx.voxels.size(); ++k) {
+        const std::uint32_t i = rx.voxels[k];
+        if (graph.kind[i] == ParticleKind::kFluid) t.c_[i * nr + r] = rx.areas[k];
+      }
+      continue;
+    }
     for (std::size_t i = 0; i < n; ++i) {
       const bool kind_ok = rx.kinds.empty() ? graph.kind[i] == ParticleKind::kFluid
                                             : std::find(rx.kinds.begin(), rx.kinds.end(),
@@ -100,9 +109,11 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
   return t;
 }
 
-double ReactionTable::law_propensity(std::size_t r, std::uint32_t i, double volume,
+double ReactionTable::law_propensity(std::size_t r, std::uint32_t i, double constant,
                                      const std::int64_t* counts, std::size_t n_voxels) const {
   const LawEntry& entry = laws_[reactions_[r].law];
+  // A volume law: constant = V_i, a = V_i v(C). A boundary flux: constant = A_i, a = A_i j(C).
+  const double volume = entry.areal ? volume_[i] : constant;
   for (const auto& [s, nu] : entry.needs) {
     if (counts[s * n_voxels + i] < nu) return 0.0;  // a reactant is missing
   }
@@ -113,7 +124,7 @@ double ReactionTable::law_propensity(std::size_t r, std::uint32_t i, double volu
     c[k] = sp[k] < ns_ ? static_cast<double>(counts[sp[k] * n_voxels + i]) / volume
                        : frozen_[(sp[k] - ns_) * n_voxels + i];
   }
-  const double a = volume * law.density(c, input_time_);
+  const double a = constant * law.density(c, input_time_);
   if (a >= 0 && a < std::numeric_limits<double>::infinity()) return a;
   std::string state;
   for (std::size_t k = 0; k < sp.size(); ++k) {

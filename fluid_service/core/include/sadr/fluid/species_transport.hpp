@@ -109,6 +109,7 @@ class SpeciesTransport {
     std::vector<std::uint8_t> fires;         // [particle] 1 where the reaction fires
     std::array<std::uint8_t, 4> kind_ok{};   // [kind] 1 if the reaction fires on that kind
     std::vector<std::uint8_t> listed;        // [particle] in ReactionSpec::particles (empty: all)
+    std::vector<double> scale;  // [particle] boundary flux: A_i / V_i (empty: a volume rate, 1)
   };
   [[nodiscard]] double velocity(const CompiledReaction& r, std::size_t i,
                                 const std::vector<std::vector<double>>& c) const;

@@ -45,6 +45,10 @@ struct Capabilities {
   /// and the `free` boundary condition (wall particles that react and change). Without it the
   /// scene loader refuses them (they would be silently dropped).
   bool wall_species_terms = true;
+  /// Deterministic boundary fluxes (scene `boundary_fluxes`: a law-valued source in the fluid
+  /// particles next to a face). Without it the scene loader refuses them for deterministic
+  /// species (stochastic ones are the SSA's and need nothing of the backend).
+  bool boundary_fluxes = true;
 };
 
 /// Peak resident memory per particle with this backend (bench/memory_per_particle.py: the slope

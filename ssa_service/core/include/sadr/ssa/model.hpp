@@ -58,6 +58,10 @@ struct Reaction {
   /// A law other than mass action (species by the names of Model::species;
   /// `rate` is then unused). Propensity a_i = V_i v(X_i / V_i).
   std::optional<rate_law::Definition> law{};
+  /// Non-empty: a boundary flux (scene `boundary_fluxes`), parallel to `voxels` (then required):
+  /// A_i [L^(d-1)] > 0, voxel i's share of the boundary area. The law (required) is then a flux
+  /// density j [molecules/(L^(d-1) T)] and the propensity is a_i = A_i j(X_i / V_i).
+  std::vector<double> areas{};
 };
 
 /// Dirichlet reservoir: wall particles hold round(C V_i) molecules of

@@ -40,7 +40,7 @@ class ReactionTable {
   /// true if some reaction has a non-zero constant in voxel i.
   [[nodiscard]] bool active(std::uint32_t i) const { return active_[i] != 0; }
   /// Stochastic rate constant c of reaction r in voxel i [1/T]; for a rate
-  /// law, V_i where it fires (else 0).
+  /// law, V_i where it fires (else 0); for a boundary flux, A_i.
   [[nodiscard]] double constant(std::uint32_t i, std::size_t r) const {
     return c_[i * reactions_.size() + r];
   }
@@ -81,10 +81,10 @@ class ReactionTable {
   [[nodiscard]] const std::vector<double>& frozen() const { return frozen_; }
 
  private:
-  /// a = V v(X / V) for rate-law reaction r in voxel i of volume V (0 if a
-  /// reactant has fewer molecules than its stoichiometry); throws
-  /// NumericalFailure (reaction, voxel, counts) if a is negative or non-finite.
-  [[nodiscard]] double law_propensity(std::size_t r, std::uint32_t i, double volume,
+  /// a = c v(X / V_i) for rate-law reaction r in voxel i, c = constant(i, r): V_i for a volume
+  /// law, A_i for a boundary flux (0 if a reactant has fewer molecules than its stoichiometry);
+  /// throws NumericalFailure (reaction, voxel, counts) if a is negative or non-finite.
+  [[nodiscard]] double law_propensity(std::size_t r, std::uint32_t i, double constant,
                                       const std::int64_t* counts, std::size_t n_voxels) const;
 
   struct LawEntry {
@@ -92,6 +92,7 @@ class ReactionTable {
     std::vector<std::pair<int, int>> needs;  ///< reactants (species, nu): a = 0 if X < nu
     std::size_t reaction = 0;                ///< its reaction index
     bool external = false;                   ///< reads t or a frozen species
+    bool areal = false;                      ///< a boundary flux: constant = A_i, not V_i
   };
   std::vector<LawEntry> laws_;
   int ns_ = 0;  ///< simulated species; law species >= ns_ are frozen
@@ -104,6 +105,7 @@ class ReactionTable {
   std::vector<CompiledReaction> reactions_;
   std::vector<double> c_;             ///< [voxel * R + r]
   std::vector<std::uint8_t> active_;  ///< per voxel
+  std::vector<double> volume_;        ///< V_i, kept only when a boundary flux needs it
 };
 
 }  // namespace sadr::ssa
