@@ -231,5 +231,146 @@ TEST(RateLawCme, CachedLawPropensitiesStayEqualToRecomputedOnes) {
   RecordProperty("checked", std::to_string(checked));
 }
 
+
+// Boundary fluxes (Reaction::areas, scene `boundary_fluxes`): the propensity is A_i j(X_i / V_i).
+
+rate_law::Definition constant_flux(double q) {
+  rate_law::Definition d;
+  d.type = rate_law::Type::kExpression;
+  d.expression = std::to_string(q);
+  return d;
+}
+
+// A constant influx j = q into three boundary voxels of areas 0.5, 1, 1.5 (V = 1, no
+// diffusion) gives Poisson counts of mean A_i q t in each and nothing elsewhere: mean and
+// variance z-tests, 3 voxels x 2 times x 2 = 12 comparisons, family-wise false-failure rate
+// 1e-4 (Bonferroni), R = 2000 realizations.
+TEST(BoundaryFluxCme, ConstantInfluxGivesPoissonCountsOfMeanAqt) {
+  Model m;
+  m.species = {{"X", 0}};
+  m.box = testing::make_box(1, 6.0, false);
+  m.smoothing_length = 1.5;
+  Reaction rx;
+  rx.name = "influx";
+  rx.products = {{0, 1}};
+  rx.law = constant_flux(4.0);
+  rx.voxels = {1, 2, 4};
+  rx.areas = {0.5, 1.0, 1.5};
+  m.reactions = {rx};
+  const std::vector<double> times = {0.5, 2.0};
+  const int r_count = 2000;
+  const double zs = testing::z_star(1e-4, 12);
+  std::vector<Moments> mom(times.size() * 3);
+  for (int r = 0; r < r_count; ++r) {
+    NsmSolver s(m, rng::mix_seed(17, static_cast<std::uint64_t>(r)));
+    s.update_graph(testing::make_lattice(1, 6, 1.0));
+    for (std::size_t t = 0; t < times.size(); ++t) {
+      s.advance(times[t]);
+      const auto x = s.counts(0);
+      for (std::size_t k = 0; k < 3; ++k) mom[t * 3 + k].add(static_cast<double>(x[rx.voxels[k]]));
+      ASSERT_EQ(x[0] + x[3] + x[5], 0);  // no flux outside the boundary voxels
+    }
+  }
+  double worst = 0;
+  for (std::size_t t = 0; t < times.size(); ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double mean = rx.areas[k] * 4.0 * times[t];  // Poisson: var = mean, mu4 = m + 3 m^2
+      const Moments& mo = mom[t * 3 + k];
+      const double z_mean = (mo.mean() - mean) / std::sqrt(mean / r_count);
+      const double z_var = testing::variance_z(mo.var(), mean, mean + 3 * mean * mean, r_count);
+      EXPECT_LE(std::abs(z_mean), zs) << "voxel " << k << " t=" << times[t];
+      EXPECT_LE(std::abs(z_var), zs) << "voxel " << k << " t=" << times[t];
+      worst = std::max({worst, std::abs(z_mean), std::abs(z_var)});
+    }
+  }
+  RecordProperty("max_abs_z", std::to_string(worst));
+}
+
+// A Michaelis-Menten outflux S -> 0 through a boundary of area A = 0.5 on one voxel of V = 2
+// (kcat = 0.8, Km = 5, E = 3 molecules): a(x) = A kcat (E/V) (x/V) / (Km + x/V), against the CME
+// (FSP of the death chain); mean and variance z-tests at 4 times, 8 comparisons, family-wise
+// false-failure rate 1e-4, R = 3000.
+TEST(BoundaryFluxCme, MichaelisMentenOutfluxMatchesFsp) {
+  const double area = 0.5, volume = 2.0;
+  const std::vector<double> times = {1, 4, 10, 25};
+  const int r_count = 3000;
+  const std::int64_t s0 = 30, e0 = 3;
+  Reaction rx = decay(michaelis(0.8, 5));
+  rx.voxels = {0};
+  rx.areas = {area};
+  const rate_law::RateLaw f(*rx.law, {"S", "E"});
+  std::vector<double> a(s0 + 1);
+  for (std::int64_t x = 0; x <= s0; ++x) {
+    const double c[2] = {static_cast<double>(x) / volume, static_cast<double>(e0) / volume};
+    a[x] = area * f.density(c, 0);
+  }
+  const double zs = testing::z_star(1e-4, 8);
+  std::vector<Moments> mom(times.size());
+  for (int r = 0; r < r_count; ++r) {
+    NsmSolver s(one_voxel_model(rx, {{"S", 0}, {"E", 0}}),
+                rng::mix_seed(23, static_cast<std::uint64_t>(r)));
+    s.update_graph(voxel(volume));
+    s.set_counts(0, std::vector<std::int64_t>{s0});
+    s.set_counts(1, std::vector<std::int64_t>{e0});
+    for (std::size_t t = 0; t < times.size(); ++t) {
+      s.advance(times[t]);
+      mom[t].add(static_cast<double>(s.counts(0)[0]));
+    }
+  }
+  double worst = 0;
+  for (std::size_t t = 0; t < times.size(); ++t) {
+    const Exact ex = moments(death_chain(a, times[t]));
+    const double z_mean = (mom[t].mean() - ex.mean) / std::sqrt(ex.var / r_count);
+    const double z_var = testing::variance_z(mom[t].var(), ex.var, ex.mu4, r_count);
+    EXPECT_LE(std::abs(z_mean), zs) << "t=" << times[t];
+    EXPECT_LE(std::abs(z_var), zs) << "t=" << times[t];
+    worst = std::max({worst, std::abs(z_mean), std::abs(z_var)});
+  }
+  EXPECT_LT(mom.back().mean(), 0.8 * s0);  // the outflux has acted
+  RecordProperty("max_abs_z", std::to_string(worst));
+}
+
+// The dependency graph with a boundary flux: an outflux law reading a diffusing species S on
+// the 4 boundary voxels of a 4 x 4 lattice; after every stretch of events the cached
+// propensity equals the one recomputed from the counts (A_i j(X_i / V_i)).
+TEST(BoundaryFluxCme, CachedBoundaryPropensitiesStayEqualToRecomputedOnes) {
+  Model m;
+  m.species = {{"S", 0.3}, {"E", 0.1}};
+  m.box = testing::make_box(2, 4.0, true);
+  m.smoothing_length = 1.5;
+  Reaction out = decay(michaelis(0.8, 5));
+  out.name = "uptake";
+  out.voxels = {0, 1, 2, 3};
+  out.areas = {0.25, 0.5, 1.0, 2.0};
+  Reaction in;
+  in.name = "supply";
+  in.products = {{0, 1}};
+  in.rate = 2.0;
+  m.reactions = {out, in};
+  NsmSolver s(m, 78);
+  s.update_graph(testing::make_lattice(2, 4, 1.0));
+  std::vector<std::int64_t> x0(16), e0(16);
+  for (std::size_t i = 0; i < 16; ++i) x0[i] = 5 + 3 * i, e0[i] = 1 + i % 3;
+  s.set_counts(0, x0);
+  s.set_counts(1, e0);
+  const RdmeState& st = s.state();
+  const ReactionTable& t = st.reactions();
+  const rate_law::RateLaw f(*out.law, {"S", "E"});
+  std::size_t checked = 0;
+  for (double time = 0.05; time <= 6.0; time += 0.05) {
+    s.advance(time);
+    const auto x = s.counts(0), e = s.counts(1);
+    for (std::uint32_t i = 0; i < 16; ++i) {
+      const double cached = st.reaction_propensity(0, i);
+      EXPECT_EQ(cached, t.propensity(0, i, st.all_counts().data(), 16)) << i << " t=" << time;
+      const double c[2] = {x[i] / 1.0, e[i] / 1.0};  // V = 1
+      EXPECT_EQ(cached, i < 4 && x[i] > 0 ? out.areas[i] * f.density(c, 0) : 0.0) << i;
+      ++checked;
+    }
+  }
+  EXPECT_GT(s.events(), 1000u);
+  RecordProperty("checked", std::to_string(checked));
+}
+
 }  // namespace
 }  // namespace sadr::ssa
