@@ -2,7 +2,7 @@
 // Scene section "boundary_fluxes" (docs/scene-format.md): a Neumann flux whose density is a rate
 // law of the concentrations next to a box face, lowered to a reaction that fires only in the
 // first layer of fluid particles at the face, each with its share A_i of the face's area
-// (docs/method.md 4c).
+// (docs/method.md 4d).
 #include <algorithm>
 #include <array>
 #include <cmath>

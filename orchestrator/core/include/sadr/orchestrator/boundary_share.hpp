@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file boundary_share.hpp
 /// Where a boundary flux (scene `boundary_fluxes`) enters: the first layer of fluid particles at
-/// a box face and each one's share A_i of the face's area (docs/method.md 4c).
+/// a box face and each one's share A_i of the face's area (docs/method.md 4d).
 #pragma once
 
 #include <cstdint>
