@@ -68,7 +68,7 @@ TEST(BoundaryFluxE2e, WellMixedFluxesMatchTheOdeAndConserveAndTheSsaIsPoisson) {
     }
     double added = 0, births = 0;
     for (std::size_t i = 0; i < f.rows(); ++i) {
-      const bool bottom = y[i] < 0.25, top = y[i] > 0.75;
+      const bool bottom = y[i]<0.25, top = y[i]> 0.75;
       worst_c = std::max(worst_c, std::fabs(c[i] - (bottom ? 1.0 + 2 * 0.3 * t : 1.0)));
       worst_s = std::max(worst_s, std::fabs(s[i] - (top ? lo : 2.0)));
       added += (c[i] - 1.0) * 0.25;
@@ -124,8 +124,9 @@ output: {times: [0.5], formats: [csv]}
   double err = 0, peak = 0, amount = 0;
   for (std::size_t i = 0; i < f.rows(); ++i) {
     const double s = x[i];
-    const double exact = (2 * q / kappa) * std::sqrt(kappa * t / M_PI) * std::exp(-s * s / (l * l)) -
-                         (q * s / kappa) * std::erfc(s / l);
+    const double exact =
+        (2 * q / kappa) * std::sqrt(kappa * t / M_PI) * std::exp(-s * s / (l * l)) -
+        (q * s / kappa) * std::erfc(s / l);
     err = std::max(err, std::fabs(c[i] - exact));
     peak = std::max(peak, exact);
     amount += c[i] * dx;
@@ -140,15 +141,14 @@ TEST(BoundaryFluxE2e, SlabWithAConstantFluxConvergesToTheSemiInfiniteSolution) {
   const double e1 = slab_error(50, &amount[0]);
   const double e2 = slab_error(100, &amount[1]);
   const double e3 = slab_error(200, &amount[2]);
-  std::printf("slab: max |C - exact| / max C at dx = 1/50, 1/100, 1/200: %.3g %.3g %.3g "
-              "(orders %.2f %.2f); amount error %.2g %.2g %.2g\n",
-              e1, e2, e3, std::log2(e1 / e2), std::log2(e2 / e3), amount[0], amount[1],
-              amount[2]);
+  std::printf(
+      "slab: max |C - exact| / max C at dx = 1/50, 1/100, 1/200: %.3g %.3g %.3g "
+      "(orders %.2f %.2f); amount error %.2g %.2g %.2g\n",
+      e1, e2, e3, std::log2(e1 / e2), std::log2(e2 / e3), amount[0], amount[1], amount[2]);
   for (double a : amount) EXPECT_LT(a, 1e-11);  // conservative: the total is q t to round-off
-  EXPECT_GT(e1 / e3, 3.0);  // at least order 0.8 (measured 1.2)
+  EXPECT_GT(e1 / e3, 3.0);                      // at least order 0.8 (measured 1.2)
   EXPECT_LT(e3, 0.025);
 }
-
 
 // SDPD: a fluid at rest between wall particles (3 rows each side), a constant influx q on face
 // y-: the amount in the fluid, sum C_i m_i / rho_i, grows by A q t (measured: to 2e-16; the

@@ -18,23 +18,23 @@ using test::replace_once;
 // 2 x 1 box, x periodic, y walled, dx = 0.1: wall rows y = 0, 0.1, 0.2 and 0.8, 0.9, 1.0 (3
 // rows each), fluid rows y = 0.3 .. 0.7 (5 rows of 20).
 const std::string kScene =
-    "dimension: 2\n"                                                                   // 1
-    "box: {lower: [0, 0], upper: [2, 1], periodic: [true, false]}\n"                    // 2
-    "regions:\n"                                                                       // 3
-    "  - {name: walls, shape: channel, axis: y, lower: 0.25, upper: 0.75}\n"           // 4
-    "  - {name: injury, shape: box, lower: [0.5, 0], upper: [1.0, 1]}\n"               // 5
-    "  - {name: ball, shape: disk, center: [1, 0.5], radius: 0.2}\n"                   // 6
-    "particles:\n"                                                                     // 7
-    "  spacing: 0.1\n"                                                                 // 8
-    "  fill: [{region: walls, kind: fluid}, {kind: wall}]\n"                           // 9
-    "fluid: {backend: static, h_over_dx: 1.5}\n"                                       // 10
-    "parameters: {q: 2.0}\n"                                                           // 11
-    "species:\n"                                                                       // 12
-    "  - {name: A, stochastic: false, diffusivity: 0.1}\n"                             // 13
-    "  - {name: B, diffusivity: 0.1}\n"                                                // 14
-    "boundary_fluxes:\n"                                                               // 15
+    "dimension: 2\n"                                                                      // 1
+    "box: {lower: [0, 0], upper: [2, 1], periodic: [true, false]}\n"                      // 2
+    "regions:\n"                                                                          // 3
+    "  - {name: walls, shape: channel, axis: y, lower: 0.25, upper: 0.75}\n"              // 4
+    "  - {name: injury, shape: box, lower: [0.5, 0], upper: [1.0, 1]}\n"                  // 5
+    "  - {name: ball, shape: disk, center: [1, 0.5], radius: 0.2}\n"                      // 6
+    "particles:\n"                                                                        // 7
+    "  spacing: 0.1\n"                                                                    // 8
+    "  fill: [{region: walls, kind: fluid}, {kind: wall}]\n"                              // 9
+    "fluid: {backend: static, h_over_dx: 1.5}\n"                                          // 10
+    "parameters: {q: 2.0}\n"                                                              // 11
+    "species:\n"                                                                          // 12
+    "  - {name: A, stochastic: false, diffusivity: 0.1}\n"                                // 13
+    "  - {name: B, diffusivity: 0.1}\n"                                                   // 14
+    "boundary_fluxes:\n"                                                                  // 15
     "  - {name: in, species: A, face: y-, law: {type: expression, expression: \"q\"}}\n"  // 16
-    "time: {coupling_step: 0.1, end: 1.0}\n";                                          // 17
+    "time: {coupling_step: 0.1, end: 1.0}\n";                                             // 17
 
 std::string error_of(const std::string& text) {
   try {
@@ -65,11 +65,11 @@ TEST(BoundaryFluxScene, TheFirstFluidLayerSharesTheFaceAreaExactly) {
 }
 
 TEST(BoundaryFluxScene, APatchOfAFaceSharesItsArea) {
-  const Scene p = parse_scene(
-      replace_once(kScene, kLine16,
-                   "  - {species: B, face: y+, region: injury, law: {type: expression, "
-                   "expression: \"q*B\"}}\n"),
-      "scene.yaml");
+  const Scene p =
+      parse_scene(replace_once(kScene, kLine16,
+                               "  - {species: B, face: y+, region: injury, law: {type: expression, "
+                               "expression: \"q*B\"}}\n"),
+                  "scene.yaml");
   ASSERT_EQ(p.reactions.size(), 1u);
   const Reaction& rx = p.reactions[0];
   EXPECT_TRUE(rx.stochastic);
@@ -91,7 +91,8 @@ TEST(BoundaryFluxScene, WrongFluxesAreRefusedWithFileAndLine) {
       {"  - {species: Z, face: y-, law: {type: expression, expression: \"q\"}}\n",
        "scene.yaml:16:15: boundary_fluxes[0].species: unknown species 'Z'"},
       {"  - {species: A, face: y-, law: {type: expression, expression: \"q*Y\"}}\n",
-       "scene.yaml:16:33: boundary_fluxes[0].law: scene.yaml:16: rate law expression \"q*Y\": unknown symbol 'Y'"},
+       "scene.yaml:16:33: boundary_fluxes[0].law: scene.yaml:16: rate law expression \"q*Y\": "
+       "unknown symbol 'Y'"},
       {"  - {species: A, face: x-, law: {type: expression, expression: \"q\"}}\n",
        "face 'x-' is on a periodic axis"},
       {"  - {species: A, face: z-, law: {type: expression, expression: \"q\"}}\n",
@@ -99,7 +100,8 @@ TEST(BoundaryFluxScene, WrongFluxesAreRefusedWithFileAndLine) {
       {"  - {species: A, face: y-, region: ball, law: {type: expression, expression: \"q\"}}\n",
        "region 'ball' has shape"},
       {"  - {species: A, face: y-, law: {type: expression, expression: \"-q\"}}\n",
-       "scene.yaml:16:33: boundary_fluxes[0].law: scene.yaml:16: rate law expression \"-q\": v = -2"},
+       "scene.yaml:16:33: boundary_fluxes[0].law: scene.yaml:16: rate law expression \"-q\": v = "
+       "-2"},
       {"  - {species: A, face: y-}\n", "missing 'law'"},
       {"  - {species: A, equation: \"A -> 0\", face: y-, law: {type: expression, expression: "
        "\"q\"}}\n",
@@ -113,14 +115,14 @@ TEST(BoundaryFluxScene, WrongFluxesAreRefusedWithFileAndLine) {
   }
   // No fluid particle on the patch: with x walled, the x- face's part 0 <= y <= 0.2 holds
   // wall particles only.
-  const std::string walled =
-      replace_once(replace_once(kScene, "periodic: [true, false]", "periodic: [false, false]"),
-                   kLine16,
-                   "  - {species: A, face: x-, region: low, law: {type: expression, "
-                   "expression: \"q\"}}\n");
-  const std::string msg = error_of(replace_once(
-      walled, "  - {name: ball,", "  - {name: low, shape: box, lower: [0, 0], upper: [2, 0.2]}\n"
-                                  "  - {name: ball,"));
+  const std::string walled = replace_once(
+      replace_once(kScene, "periodic: [true, false]", "periodic: [false, false]"), kLine16,
+      "  - {species: A, face: x-, region: low, law: {type: expression, "
+      "expression: \"q\"}}\n");
+  const std::string msg =
+      error_of(replace_once(walled, "  - {name: ball,",
+                            "  - {name: low, shape: box, lower: [0, 0], upper: [2, 0.2]}\n"
+                            "  - {name: ball,"));
   EXPECT_NE(msg.find("no fluid particle lies on the face's part inside the region"),
             std::string::npos)
       << msg;

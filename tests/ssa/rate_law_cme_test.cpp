@@ -231,7 +231,6 @@ TEST(RateLawCme, CachedLawPropensitiesStayEqualToRecomputedOnes) {
   RecordProperty("checked", std::to_string(checked));
 }
 
-
 // Boundary fluxes (Reaction::areas, scene `boundary_fluxes`): the propensity is A_i j(X_i / V_i).
 
 rate_law::Definition constant_flux(double q) {

@@ -113,8 +113,8 @@ std::string markdown_capabilities() {
     const auto& c = b.capabilities;
     s += "| `" + b.name + "` | " + yes(c.moves_particles) + " | " + yes(c.transports_species) +
          " | " + yes(c.thermal_noise) + " | " + yes(c.open_boundaries) + " | " +
-         yes(c.wall_species_terms) + " | " + yes(c.boundary_fluxes) + " | " + join(c.wall_models) + " | " + join(c.kernels) + " | " +
-         join(b.required) + " |\n";
+         yes(c.wall_species_terms) + " | " + yes(c.boundary_fluxes) + " | " + join(c.wall_models) +
+         " | " + join(c.kernels) + " | " + join(b.required) + " |\n";
   }
   return s;
 }

@@ -187,7 +187,8 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     if (rx.has_law()) spec.law = wire::from_proto(rx.law(), here + ".law");
     if (rx.boundary_particles_size() > 0 || rx.boundary_areas_size() > 0) {
       if (rx.regions_size() > 0 || rx.boundary_particles_size() != rx.boundary_areas_size()) {
-        throw InvalidArgument(here + ": a boundary flux has no regions and one area per particle (" +
+        throw InvalidArgument(here +
+                              ": a boundary flux has no regions and one area per particle (" +
                               std::to_string(rx.boundary_particles_size()) + " particles, " +
                               std::to_string(rx.boundary_areas_size()) + " areas)");
       }

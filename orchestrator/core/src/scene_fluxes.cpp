@@ -20,7 +20,7 @@ namespace sadr::orchestrator::detail {
 namespace {
 
 constexpr std::array<std::string_view, 6> kFluxKeys{"name", "equation", "species",
-                                                    "face",  "region",   "law"};
+                                                    "face", "region",   "law"};
 constexpr std::array<std::string_view, 6> kFaces{"x-", "x+", "y-", "y+", "z-", "z+"};
 
 }  // namespace
@@ -115,8 +115,9 @@ void read_boundary_fluxes(SceneContext& ctx, const Field& root) {
     const Field eqf = YamlReader::child(f, "equation");
     const Field spf = YamlReader::child(f, "species");
     if (YamlReader::present(eqf) == YamlReader::present(spf)) {
-      r.error(f, "give either 'species' (an influx, \"0 -> X\") or 'equation' (e.g. \"S -> P\": "
-                 "S leaves and P enters the fluid at the rate of the law)");
+      r.error(f,
+              "give either 'species' (an influx, \"0 -> X\") or 'equation' (e.g. \"S -> P\": "
+              "S leaves and P enters the fluid at the rate of the law)");
       continue;
     }
     if (YamlReader::present(spf)) {
@@ -136,8 +137,9 @@ void read_boundary_fluxes(SceneContext& ctx, const Field& root) {
     const auto stochastic = check_reaction_species(ctx, where, rx, true);
     const auto face = r.choice(f, "face", kFaces, true, "face");
     if (!YamlReader::present(YamlReader::child(f, "law"))) {
-      r.error(f, "missing 'law': the flux density j [molecules/(length^(d-1) time)], e.g. "
-                 "{type: expression, expression: \"q\"}");
+      r.error(f,
+              "missing 'law': the flux density j [molecules/(length^(d-1) time)], e.g. "
+              "{type: expression, expression: \"q\"}");
       continue;
     }
     if (!stochastic || !face) continue;
@@ -178,14 +180,14 @@ void read_boundary_fluxes(SceneContext& ctx, const Field& root) {
       }
     }
     try {
-      BoundaryShare s = boundary_share(ctx.scene.particles, ctx.scene.box, axis,
-                                       (*face)[1] == '+', extent, ctx.tolerance());
+      BoundaryShare s = boundary_share(ctx.scene.particles, ctx.scene.box, axis, (*face)[1] == '+',
+                                       extent, ctx.tolerance());
       rx.boundary_particles = std::move(s.particles);
       rx.boundary_areas = std::move(s.areas);
     } catch (const InvalidArgument& e) {
-      r.error(YamlReader::present(YamlReader::child(f, "region")) ? YamlReader::child(f, "region")
-                                                                   : ff,
-              "boundary flux '" + rx.name + "' on face " + *face + ": " + e.what());
+      r.error(
+          YamlReader::present(YamlReader::child(f, "region")) ? YamlReader::child(f, "region") : ff,
+          "boundary flux '" + rx.name + "' on face " + *face + ": " + e.what());
       continue;
     }
     if (!names.insert(rx.name).second) {

@@ -74,9 +74,9 @@ std::string scene_name_from_file(const std::filesystem::path& source) {
 namespace {
 
 constexpr std::array<std::string_view, 15> kTopKeys{
-    "name",    "description", "dimension", "box",    "regions", "particles",
-    "fluid",   "parameters",  "species",   "reactions", "boundary_fluxes", "time",
-    "output",  "seed",        "ssa"};
+    "name",   "description", "dimension", "box",       "regions",         "particles",
+    "fluid",  "parameters",  "species",   "reactions", "boundary_fluxes", "time",
+    "output", "seed",        "ssa"};
 
 void read_box(SceneContext& ctx, const Field& root) {
   YamlReader& r = ctx.reader;

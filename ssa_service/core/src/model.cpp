@@ -98,8 +98,8 @@ void Model::validate() const {
       }
       for (std::size_t k = 0; k < rx.areas.size(); ++k) {
         if (!(rx.areas[k] > 0 && std::isfinite(rx.areas[k]))) {
-          issues.push_back(f + ".areas[" + std::to_string(k) +
-                           "] = " + format_value(rx.areas[k]) + " (allowed: finite and > 0)");
+          issues.push_back(f + ".areas[" + std::to_string(k) + "] = " + format_value(rx.areas[k]) +
+                           " (allowed: finite and > 0)");
         }
       }
     }

@@ -112,7 +112,8 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
     out.voxels.erase(std::unique(out.voxels.begin(), out.voxels.end()), out.voxels.end());
     if (rx.boundary_particles_size() > 0 || rx.boundary_areas_size() > 0) {
       if (rx.regions_size() > 0 || rx.boundary_particles_size() != rx.boundary_areas_size()) {
-        throw InvalidArgument(here + ": a boundary flux has no regions and one area per particle (" +
+        throw InvalidArgument(here +
+                              ": a boundary flux has no regions and one area per particle (" +
                               std::to_string(rx.boundary_particles_size()) + " particles, " +
                               std::to_string(rx.boundary_areas_size()) + " areas)");
       }

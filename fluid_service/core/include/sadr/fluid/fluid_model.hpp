@@ -95,7 +95,7 @@ struct ReactionSpec {
   /// required): A_i [length^(d-1)] > 0, particle i's share of the boundary area. The law is a
   /// flux density j [C length/time] into the fluid and dC_s/dt += delta_s j A_i / V_i with
   /// V_i = m_i / rho_i at initialize() (docs/method.md 4d).
-  std::vector<double> boundary_area;
+  std::vector<double> boundary_area{};
 };
 
 /// Boussinesq body acceleration a = coefficient * (C_species - reference) * direction.

@@ -25,8 +25,7 @@ struct BoundaryShare {
 /// of the outermost candidate along the normal. A_i = A l_i^(d-1) / sum_j l_j^(d-1), so
 /// sum_i A_i = A to round-off (checked to 1e-12 A). Throws InvalidArgument for an empty patch
 /// or no fluid particle on it.
-[[nodiscard]] BoundaryShare boundary_share(const ParticleState& particles, const Box& box,
-                                           int axis, bool upper, const Region* extent,
-                                           double tol);
+[[nodiscard]] BoundaryShare boundary_share(const ParticleState& particles, const Box& box, int axis,
+                                           bool upper, const Region* extent, double tol);
 
 }  // namespace sadr::orchestrator

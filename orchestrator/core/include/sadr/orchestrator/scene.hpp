@@ -100,8 +100,8 @@ struct Reaction {
   /// Non-empty: a boundary flux (scene `boundary_fluxes`): the law is a flux density j
   /// [molecules/(length^(d-1) time)] into the fluid, fired only in these fluid particles, each
   /// with its share of the face's area [length^(d-1)] (boundary_share.hpp); `regions` empty.
-  std::vector<std::uint32_t> boundary_particles;
-  std::vector<double> boundary_areas;
+  std::vector<std::uint32_t> boundary_particles{};
+  std::vector<double> boundary_areas{};
   [[nodiscard]] unsigned order() const;
 };
 
