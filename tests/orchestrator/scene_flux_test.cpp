@@ -106,8 +106,6 @@ TEST(BoundaryFluxScene, WrongFluxesAreRefusedWithFileAndLine) {
       {"  - {species: A, equation: \"A -> 0\", face: y-, law: {type: expression, expression: "
        "\"q\"}}\n",
        "give either 'species'"},
-      {"  - {species: A, face: y-, law: {type: expression, expression: \"q*B\"}}\n",
-       "reads the stochastic species 'B'"},
   };
   for (const auto& c : cases) {
     const std::string msg = error_of(replace_once(kScene, kLine16, c.to));
