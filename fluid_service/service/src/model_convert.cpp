@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // sadr.fluid.v1.FluidModel -> sadr::fluid::FluidModel (validation at the boundary).
 #include <algorithm>
-#include <cmath>
+#include <cstdint>
 #include <map>
 
 #include "sadr/fluid/fluid_service.hpp"
@@ -48,46 +48,39 @@ std::vector<std::pair<int, int>> stoichiometry(
   return out;
 }
 
-/// parameters["open_boundary.<field>"] (numbers; the orchestrator writes them from the scene's
-/// fluid.open_boundary, docs/scene-format.md). Any such key switches the open boundary on.
-void open_boundary_parameter(OpenBoundary& ob, const std::string& key, double value,
-                             const std::string& where) {
-  const std::string field = key.substr(std::string("open_boundary.").size());
-  auto whole = [&](int lo, int hi) {
-    if (!(value >= lo && value <= hi && value == std::floor(value))) {
-      throw InvalidArgument(where + ".parameters['" + key + "'] = " + format_value(value) +
-                            " (allowed: a whole number in [" + std::to_string(lo) + ", " +
-                            std::to_string(hi) + "])");
-    }
-    return static_cast<int>(value);
-  };
+/// The typed FluidModel.open_boundary (FluidModel::validate() checks the channel against the box
+/// and h).
+OpenBoundary open_boundary(const v1::OpenBoundary& in, const std::string& where) {
+  OpenBoundary ob;
   ob.enabled = true;
-  if (field == "axis") {
-    ob.axis = whole(0, 2);
-  } else if (field == "inlet_lo") {
-    ob.inlet_lo = value;
-  } else if (field == "fluid_lo") {
-    ob.fluid_lo = value;
-  } else if (field == "fluid_hi") {
-    ob.fluid_hi = value;
-  } else if (field == "outlet_hi") {
-    ob.outlet_hi = value;
-  } else if (field == "profile") {
-    ob.profile =
-        whole(0, 1) == 0 ? OpenBoundary::Profile::kUniform : OpenBoundary::Profile::kParabolic;
-  } else if (field == "mean_velocity") {
-    ob.mean_velocity = value;
-  } else if (field == "cross_axis") {
-    ob.cross_axis = whole(0, 2);
-  } else if (field == "wall_lo") {
-    ob.wall_lo = value;
-  } else if (field == "wall_hi") {
-    ob.wall_hi = value;
-  } else {
-    throw InvalidArgument(where + ".parameters: unknown key '" + key +
-                          "' (allowed open_boundary.<axis, inlet_lo, fluid_lo, fluid_hi, "
-                          "outlet_hi, profile, mean_velocity, cross_axis, wall_lo, wall_hi>)");
+  auto axis = [&](std::uint32_t v, const char* field) {
+    if (v > 2) {
+      throw InvalidArgument(where + "." + field + " = " + std::to_string(v) +
+                            " (allowed: 0, 1, 2)");
+    }
+    return static_cast<int>(v);
+  };
+  ob.axis = axis(in.axis(), "axis");
+  ob.inlet_lo = in.inlet_lo();
+  ob.fluid_lo = in.fluid_lo();
+  ob.fluid_hi = in.fluid_hi();
+  ob.outlet_hi = in.outlet_hi();
+  switch (in.profile()) {
+    case v1::OpenBoundary::PROFILE_UNIFORM:
+      ob.profile = OpenBoundary::Profile::kUniform;
+      break;
+    case v1::OpenBoundary::PROFILE_PARABOLIC:
+      ob.profile = OpenBoundary::Profile::kParabolic;
+      break;
+    default:
+      throw InvalidArgument(where + ".profile = " + std::to_string(in.profile()) +
+                            " (allowed: PROFILE_UNIFORM, PROFILE_PARABOLIC)");
   }
+  ob.mean_velocity = in.mean_velocity();
+  ob.cross_axis = axis(in.cross_axis(), "cross_axis");
+  ob.wall_lo = in.wall_lo();
+  ob.wall_hi = in.wall_hi();
+  return ob;
 }
 
 }  // namespace
@@ -198,32 +191,35 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     m.reactions.push_back(std::move(spec));
   }
 
-  const auto opt = in.options().find("density");
-  if (opt != in.options().end()) {
-    if (opt->second == "continuity") {
+  switch (in.density_mode()) {
+    case v1::DENSITY_MODE_CONTINUITY:
       m.density_mode = DensityMode::kContinuity;
-    } else if (opt->second == "summation") {
+      break;
+    case v1::DENSITY_MODE_SUMMATION:
       m.density_mode = DensityMode::kSummation;
-    } else {
-      throw InvalidArgument(where + ".options.density = '" + opt->second +
-                            "' (allowed: continuity, summation)");
-    }
+      break;
+    default:
+      throw InvalidArgument(where + ".density_mode = " + std::to_string(in.density_mode()) +
+                            " (allowed: DENSITY_MODE_CONTINUITY, DENSITY_MODE_SUMMATION)");
   }
-  const auto wm = in.options().find("wall_model");
-  if (wm != in.options().end()) {
-    if (wm->second == "stationary") {
+  switch (in.wall_model()) {
+    case v1::WALL_MODEL_STATIONARY:
       m.wall_model = WallModel::kStationary;
-    } else if (wm->second == "morris") {
+      break;
+    case v1::WALL_MODEL_MORRIS:
       m.wall_model = WallModel::kMorrisExtrapolated;
-    } else {
-      throw InvalidArgument(where + ".options.wall_model = '" + wm->second +
-                            "' (allowed: stationary, morris)");
-    }
+      break;
+    default:
+      throw InvalidArgument(where + ".wall_model = " + std::to_string(in.wall_model()) +
+                            " (allowed: WALL_MODEL_STATIONARY, WALL_MODEL_MORRIS)");
   }
   if (m.wall_model == WallModel::kMorrisExtrapolated && in.wall_planes_size() == 0) {
     throw InvalidArgument(where +
-                          ".options.wall_model = 'morris' needs wall_planes (the wall "
+                          ".wall_model = WALL_MODEL_MORRIS needs wall_planes (the wall "
                           "surface of each region of wall particles)");
+  }
+  if (in.has_open_boundary()) {
+    m.open_boundary = open_boundary(in.open_boundary(), where + ".open_boundary");
   }
   for (const auto& [key, value] : in.parameters()) {
     if (key == "density_diffusion") {
@@ -234,8 +230,6 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
       m.density_band = value;
     } else if (key == "neighbor_skin") {
       m.neighbor_skin = value;
-    } else if (key.rfind("open_boundary.", 0) == 0) {
-      open_boundary_parameter(m.open_boundary, key, value, where);
     } else {
       m.backend_parameters[key] = value;  // the backend checks the name
     }

@@ -100,6 +100,32 @@ void add_inflows(const Scene& scene, const Species& s, ServiceModel& m) {
   }
 }
 
+fluid::v1::DensityMode density_mode(const std::string& name) {
+  if (name == "continuity") return fluid::v1::DENSITY_MODE_CONTINUITY;
+  if (name == "summation") return fluid::v1::DENSITY_MODE_SUMMATION;
+  throw InvalidArgument("fluid.density_mode = '" + name + "' (allowed: continuity, summation)");
+}
+
+fluid::v1::WallModel wall_model(const std::string& name) {
+  if (name == "stationary") return fluid::v1::WALL_MODEL_STATIONARY;
+  if (name == "morris") return fluid::v1::WALL_MODEL_MORRIS;
+  throw InvalidArgument("fluid.wall_model = '" + name + "' (allowed: stationary, morris)");
+}
+
+void to_proto(const OpenBoundarySettings& in, fluid::v1::OpenBoundary& out) {
+  out.set_axis(static_cast<std::uint32_t>(in.axis));
+  out.set_inlet_lo(in.inlet_lo);
+  out.set_fluid_lo(in.fluid_lo);
+  out.set_fluid_hi(in.fluid_hi);
+  out.set_outlet_hi(in.outlet_hi);
+  out.set_profile(in.parabolic ? fluid::v1::OpenBoundary::PROFILE_PARABOLIC
+                               : fluid::v1::OpenBoundary::PROFILE_UNIFORM);
+  out.set_mean_velocity(in.mean_velocity);
+  out.set_cross_axis(static_cast<std::uint32_t>(in.cross_axis));
+  out.set_wall_lo(in.wall_lo);
+  out.set_wall_hi(in.wall_hi);
+}
+
 }  // namespace
 
 fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std::uint64_t seed) {
@@ -118,9 +144,10 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
   m->set_seed(seed);
   m->set_max_time_step(f.max_time_step);
   m->set_force_time_step(f.force_time_step);
-  (*m->mutable_options())["density"] = f.density_mode;
-  if (!f.wall_planes.empty()) (*m->mutable_options())["wall_model"] = f.wall_model;
+  m->set_density_mode(density_mode(f.density_mode));
+  m->set_wall_model(wall_model(f.wall_model));
   for (const auto& [k, v] : f.parameters) (*m->mutable_parameters())[k] = v;
+  if (f.open_boundary) to_proto(*f.open_boundary, *m->mutable_open_boundary());
   if (f.boussinesq) {
     m->set_buoyancy_species(f.boussinesq->species);
     m->set_buoyancy_coefficient(f.boussinesq->coefficient);

@@ -193,13 +193,12 @@ void read_parameters(SceneContext& ctx, const Field& f, const schema::Backend* b
   }
 }
 
-/// fluid.open_boundary -> parameters["open_boundary.*"] (model_convert.cpp in fluid_service
-/// reads them back into FluidModel::OpenBoundary).
+/// fluid.open_boundary -> FluidSettings::open_boundary (sent as the typed
+/// FluidModel.open_boundary).
 void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
   YamlReader& r = ctx.reader;
   const Field ob = YamlReader::child(fluid, "open_boundary");
   if (!YamlReader::present(ob) || !r.expect_map(ob, kOpenKeys)) return;
-  ctx.open_boundary = ob;
   const auto backend = ctx.scene.fluid.backend;
   if (!allowed) {
     r.error(ob, std::string("backend '") + backend + "' has no open boundaries; allowed: " +
@@ -209,7 +208,7 @@ void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
   }
   if (!ctx.dimension_ok) return;
   const int d = ctx.scene.box.dimension;
-  auto& p = ctx.scene.fluid.parameters;
+  OpenBoundarySettings& p = ctx.scene.fluid.open_boundary.emplace();
   const std::span<const std::string_view> axes(kAxes.data(), static_cast<std::size_t>(d));
   int axis = 0;
   if (auto a = r.choice(ob, "axis", axes, false, "axis")) axis = axis_index(*a);
@@ -218,7 +217,7 @@ void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
             "box.periodic is true along the flow axis; allowed: a "
             "walled (non-periodic) axis");
   }
-  p[std::string(kOpenPrefix) + "axis"] = axis;
+  p.axis = axis;
   const auto in = r.vector(ob, "inlet", 2, "length", true);
   const auto out = r.vector(ob, "outlet", 2, "length", true);
   if (in && out) {
@@ -237,15 +236,16 @@ void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
                                                   ", " + num(hi) +
                                                   "] along the flow axis; allowed: inside the box");
     }
-    p[std::string(kOpenPrefix) + "inlet_lo"] = (*in)[0];
-    p[std::string(kOpenPrefix) + "fluid_lo"] = (*in)[1];
-    p[std::string(kOpenPrefix) + "fluid_hi"] = (*out)[0];
-    p[std::string(kOpenPrefix) + "outlet_hi"] = (*out)[1];
+    p.inlet_lo = (*in)[0];
+    p.fluid_lo = (*in)[1];
+    p.fluid_hi = (*out)[0];
+    p.outlet_hi = (*out)[1];
+    ctx.open_boundary = ob;  // the channel is known: check_open_boundary checks it against h
   }
   const std::string profile =
       r.choice(ob, "profile", kProfiles, false, "profile").value_or("uniform");
   const bool parabolic = profile == "parabolic";
-  p[std::string(kOpenPrefix) + "profile"] = parabolic ? 1.0 : 0.0;
+  p.parabolic = parabolic;
   const auto mean = r.number(ob, "mean_velocity", Bound::kPositive, "length/time", false);
   const auto max = r.number(ob, "max_velocity", Bound::kPositive, "length/time", false);
   const bool mean_given = YamlReader::present(YamlReader::child(ob, "mean_velocity"));
@@ -257,9 +257,8 @@ void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
     r.error(YamlReader::child(ob, "mean_velocity"),
             "missing; required: mean_velocity or max_velocity (a number > 0 [length/time])");
   }
-  if (mean) p[std::string(kOpenPrefix) + "mean_velocity"] = *mean;
-  if (max && !mean_given)
-    p[std::string(kOpenPrefix) + "mean_velocity"] = parabolic ? *max / 1.5 : *max;
+  if (mean) p.mean_velocity = *mean;
+  if (max && !mean_given) p.mean_velocity = parabolic ? *max / 1.5 : *max;
   const Field walls = YamlReader::child(ob, "walls");
   const Field cross = YamlReader::child(ob, "cross_axis");
   if (!parabolic) {
@@ -277,15 +276,15 @@ void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
     ca = axis_index(*c);
     if (ca == axis) r.error(cross, "equals the flow axis; allowed: another active axis");
   }
-  p[std::string(kOpenPrefix) + "cross_axis"] = ca;
+  p.cross_axis = ca;
   if (auto w = r.vector(ob, "walls", 2, "length", true)) {
     if (!((*w)[0] < (*w)[1])) {
       r.error(walls, std::string("[") + num((*w)[0]) + ", " + num((*w)[1]) +
                          "]; allowed: [lo, hi] with lo < hi (the no-slip planes where the "
                          "parabola is zero)");
     }
-    p[std::string(kOpenPrefix) + "wall_lo"] = (*w)[0];
-    p[std::string(kOpenPrefix) + "wall_hi"] = (*w)[1];
+    p.wall_lo = (*w)[0];
+    p.wall_hi = (*w)[1];
   }
 }
 
@@ -308,50 +307,44 @@ void check_open_boundary(SceneContext& ctx) {
   if (!ctx.open_boundary || !ctx.particles_ok) return;
   YamlReader& r = ctx.reader;
   const Field ob = *ctx.open_boundary;
-  const auto& p = ctx.scene.fluid.parameters;
-  auto get = [&](const char* k) {
-    const auto it = p.find(std::string(kOpenPrefix) + k);
-    return it == p.end() ? std::optional<double>{} : std::optional<double>{it->second};
-  };
-  const auto in_lo = get("inlet_lo"), x0 = get("fluid_lo"), x1 = get("fluid_hi"),
-             out_hi = get("outlet_hi"), ax = get("axis");
-  if (!in_lo || !x0 || !x1 || !out_hi || !ax) return;
+  const OpenBoundarySettings& p = *ctx.scene.fluid.open_boundary;
+  const double in_lo = p.inlet_lo, x0 = p.fluid_lo, x1 = p.fluid_hi, out_hi = p.outlet_hi;
   const double h = ctx.scene.fluid.smoothing_length;
-  if (h > 0 && *x0 - *in_lo < h * (1 - 1e-9)) {
+  if (h > 0 && x0 - in_lo < h * (1 - 1e-9)) {
     r.error(YamlReader::child(ob, "inlet"),
-            std::string("length ") + num(*x0 - *in_lo) +
+            std::string("length ") + num(x0 - in_lo) +
                 " is shorter than the kernel support h = " + num(h) +
                 "; allowed: a length >= h (fluid near the inlet needs a full "
                 "kernel of buffer particles)");
   }
-  if (h > 0 && *out_hi - *x1 < h * (1 - 1e-9)) {
+  if (h > 0 && out_hi - x1 < h * (1 - 1e-9)) {
     r.error(YamlReader::child(ob, "outlet"),
-            std::string("length ") + num(*out_hi - *x1) +
+            std::string("length ") + num(out_hi - x1) +
                 " is shorter than the kernel support h = " + num(h) + "; allowed: a length >= h");
   }
   const double dx = ctx.scene.lattice_spacing;
   if (dx > 0) {  // the inlet conveyor's slots repeat with the inlet length
-    const double k = (*x0 - *in_lo) / dx;
+    const double k = (x0 - in_lo) / dx;
     if (std::fabs(k - std::round(k)) > 1e-6 * std::max(1.0, k)) {
       r.error(YamlReader::child(ob, "inlet"),
-              std::string("length ") + num(*x0 - *in_lo) + " is not a whole number of " +
+              std::string("length ") + num(x0 - in_lo) + " is not a whole number of " +
                   "particles.spacing = " + num(dx) +
                   "; allowed: k * spacing (the inlet's k lattice columns are the slots of the "
                   "inflow conveyor)");
     }
   }
   const auto& s = ctx.scene.particles;
-  const auto a = static_cast<std::size_t>(*ax);
+  const auto a = static_cast<std::size_t>(p.axis);
   const double tol = ctx.tolerance();
   for (std::size_t i = 0; i < s.size(); ++i) {
     if (s.kind(i) == ParticleKind::kWall) continue;
     const double xa = s.positions[3 * i + a];
-    if (xa < *in_lo - tol || xa > *out_hi + tol) {
+    if (xa < in_lo - tol || xa > out_hi + tol) {
       r.error(YamlReader::child(ob, "inlet"),
               std::string("particle ") + std::to_string(i) + " (kind " +
                   std::string(to_string(s.kind(i))) + ") at " + num(xa) +
-                  " along the flow axis lies outside the channel [" + num(*in_lo) + ", " +
-                  num(*out_hi) +
+                  " along the flow axis lies outside the channel [" + num(in_lo) + ", " +
+                  num(out_hi) +
                   "]; allowed: only wall particles outside the inlet and outlet buffers");
       return;
     }

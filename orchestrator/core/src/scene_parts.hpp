@@ -26,7 +26,7 @@ struct SceneContext {
   Region all_region{};                   ///< the built-in region "all" (every particle)
   std::string particle_file_bytes{};     ///< the particle CSV file, folded into the scene hash
   std::optional<Field> boussinesq{};     ///< fluid.boussinesq, checked once species are known
-  std::optional<Field> open_boundary{};  ///< fluid.open_boundary, checked once h is known
+  std::optional<Field> open_boundary{};  ///< fluid.open_boundary once its channel is read
   /// Regions of shape `ids` (index into scene.regions, their `ids` field),
   /// checked against the particle count once the particles exist.
   std::vector<std::pair<std::size_t, Field>> id_regions{};

@@ -122,6 +122,17 @@ struct WallPlane {
   double radius = 0.0;             ///< > 0: circle / sphere of this radius [length]
 };
 
+/// fluid.open_boundary (sdpd): an open channel along `axis` (docs/scene-format.md). Inlet buffer
+/// [inlet_lo, fluid_lo), fluid [fluid_lo, fluid_hi), outlet buffer [fluid_hi, outlet_hi].
+struct OpenBoundarySettings {
+  int axis = 0;
+  double inlet_lo = 0, fluid_lo = 0, fluid_hi = 0, outlet_hi = 0;  ///< [length]
+  bool parabolic = false;           ///< profile: parabolic (else uniform)
+  double mean_velocity = 0;         ///< mean inflow speed along +axis [length/time]
+  int cross_axis = 1;               ///< parabolic: the axis across the channel
+  double wall_lo = 0, wall_hi = 0;  ///< parabolic: its no-slip planes [length]
+};
+
 struct FluidSettings {
   std::string backend = "sdpd";   ///< "sdpd", "static" or "tdpd"
   double smoothing_length = 0.0;  ///< h [length]
@@ -138,6 +149,7 @@ struct FluidSettings {
   std::map<std::string, double> parameters;  ///< backend-specific numbers
   std::string wall_model = "stationary";     ///< one of the backend's wall models
   std::vector<WallPlane> wall_planes;        ///< wall_model "morris": one per wall region
+  std::optional<OpenBoundarySettings> open_boundary;
 };
 
 enum class Splitting { kLie, kStrang };
