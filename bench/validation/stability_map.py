@@ -91,15 +91,16 @@ def run_cell(bin_dir, work, name, text, extra=()):
 
 
 def limit_of(bin_dir, work, name, text):
-    """(name, value) of the smallest stability limit at the first sub-step: the
-    refusal of a max_time_step without force names the first limit it breaks
-    (in the order acoustic, viscous, body force, diffusion, reaction), so probe
-    again just below it until nothing is refused."""
+    """(name, value) of the smallest stability limit of the run: a max_time_step
+    above the binding limit is an upper bound that does not bind, and the fluid
+    service warns naming that limit and its value (once per limit), so probe
+    again just below it until nothing is said."""
     found, m_dt = None, 1.0e9
     for k in range(6):
         probe = sub(text, "fluid:\n", f"fluid:\n  max_time_step: {m_dt!r}\n")
         c = run_cell(bin_dir, work, f"{name}_probe{k}", probe)
-        m = re.search(r"breaks the (\w+) stability limit ([0-9.eE+-]+)", c["message"])
+        said = (pathlib.Path(c["dir"]) / "log.txt").read_text(errors="replace")
+        m = re.search(r"is above the (\w+) stability limit ([0-9.eE+-]+)", said)
         if not m:
             break
         found = (m.group(1), float(m.group(2)))

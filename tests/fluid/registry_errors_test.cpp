@@ -109,27 +109,33 @@ TEST(BackendErrors, BadInitialStateAndConcentrations) {
   EXPECT_THROW(b->restore("garbage"), InvalidArgument);
 }
 
-TEST(Stability, RefusesTimeStepNamingTheLimitUnlessForced) {
+// max_time_step above the acoustic limit is an upper bound that does not bind: the sub-steps and
+// the state are those of the automatic rule (the old rule refused the advance).
+TEST(Stability, MaxTimeStepAboveTheLimitLeavesTheSubstepsToTheLimit) {
   ParticleState p;
   FluidModel m = small_model(p);
-  m.max_time_step = 1.0;  // acoustic limit is 0.25 * 0.15 / 1 = 0.0375
-  auto b = builtin().create("sdpd");
-  b->initialize(m, p, {});
-  try {
-    b->advance(0, 1.0);
-    FAIL();
-  } catch (const InvalidArgument& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("acoustic"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("limit 0.037"), std::string::npos) << msg;
-  }
   m.max_time_step = 0;  // automatic: splits into sub-steps
-  b->initialize(m, p, {});
-  const auto rep = b->advance(0, 1.0);
+  auto automatic = builtin().create("sdpd");
+  automatic->initialize(m, p, {});
+  const auto rep = automatic->advance(0, 1.0);
   EXPECT_EQ(rep.limiting_criterion, "acoustic");
   EXPECT_NEAR(rep.stable_dt, 0.0375, 1e-12);
   EXPECT_EQ(rep.substeps, 27u);  // ceil(1 / 0.0375)
   EXPECT_NEAR(rep.time, 1.0, 1e-12);
+  m.max_time_step = 1.0;  // acoustic limit is 0.25 * 0.15 / 1 = 0.0375
+  auto capped = builtin().create("sdpd");
+  capped->initialize(m, p, {});
+  const auto rep1 = capped->advance(0, 1.0);
+  EXPECT_EQ(rep1.substeps, 27u);
+  ParticleState a, b;
+  automatic->read_state(a);
+  capped->read_state(b);
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.velocities, b.velocities);
+  m.max_time_step = 0.02;  // below the limit: it binds
+  auto fine = builtin().create("sdpd");
+  fine->initialize(m, p, {});
+  EXPECT_EQ(fine->advance(0, 1.0).substeps, 50u);
 }
 
 TEST(Stability, BlowUpIsDiagnosed) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Stability limits: a refused sub-step names the binding limit; a forced one that
-// breaks it is said loudly (bench/validation/stability_map.py found forced runs at
+// Stability limits: max_time_step only ever lowers the sub-step; a forced one that
+// breaks the binding limit is said loudly (bench/validation/stability_map.py found forced runs at
 // 1x the initial reaction limit that overshoot the Dirichlet value by 3.7 % silently).
 #include <gtest/gtest.h>
 
@@ -20,21 +20,28 @@ StabilityLimits limits() {
   return l;
 }
 
-TEST(Stability, RefusalNamesTheTightestLimitTheStepBreaks) {
-  try {
-    limits().check(1.0);  // breaks all three
-    FAIL() << "not refused";
-  } catch (const InvalidArgument& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find("breaks the reaction stability limit 0.002"), std::string::npos) << m;
+// max_time_step is an upper bound on the sub-step (docs/scene-format.md): above the binding limit
+// the limit decides (the old rule refused it), below it max_time_step does; both rules.
+TEST(Stability, MaxTimeStepIsAnUpperBoundNotARefusedOrForcedStep) {
+  double stable = 1.0;
+  std::string criterion;
+  const Substep automatic = next_substep(limits(), 0.0, false, 0.01, stable, criterion);
+  EXPECT_DOUBLE_EQ(automatic.dt, 0.01 / 5);  // ceil(0.01 / 0.002) pieces
+  EXPECT_EQ(criterion, "reaction");
+  for (const double above : {0.0021, 0.01, 1.0}) {
+    const Substep s = next_substep(limits(), above, false, 0.01, stable, criterion);
+    EXPECT_EQ(s.dt, automatic.dt) << above;
+    EXPECT_EQ(s.limit_name, "reaction");
   }
-  try {
-    limits().check(0.01);  // breaks diffusion and reaction only
-    FAIL() << "not refused";
-  } catch (const InvalidArgument& e) {
-    EXPECT_NE(std::string(e.what()).find("reaction"), std::string::npos) << e.what();
+  EXPECT_DOUBLE_EQ(next_substep(limits(), 0.0015, false, 0.01, stable, criterion).dt, 0.01 / 7);
+  const UniformSubsteps u0 = uniform_substeps(limits(), 0.0, false, 0.01);
+  EXPECT_EQ(u0.count, 5u);
+  for (const double above : {0.0021, 0.01, 1.0}) {
+    const UniformSubsteps u = uniform_substeps(limits(), above, false, 0.01);
+    EXPECT_EQ(u.count, 5u) << above;
+    EXPECT_EQ(u.dt, u0.dt) << above;
   }
-  EXPECT_NO_THROW(limits().check(0.002));
+  EXPECT_EQ(uniform_substeps(limits(), 0.0015, false, 0.01).count, 7u);
 }
 
 TEST(Stability, ForcedSubstepBeyondTheLimitWarnsOncePerLimit) {

@@ -9,8 +9,8 @@
 
 namespace sadr::fluid {
 
-PrescribedField PrescribedField::from_parameters(const std::map<std::string, double>& p,
-                                                 bool& rk4) {
+PrescribedField PrescribedField::from_model(const FluidModel& model, bool& rk4) {
+  const auto& p = model.backend_parameters;
   PrescribedField f;
   rk4 = false;
   for (const auto& entry : p) {
@@ -28,7 +28,7 @@ PrescribedField PrescribedField::from_parameters(const std::map<std::string, dou
       return static_cast<int>(v);
     };
     if (key == "field") {
-      f.kind = static_cast<Kind>(whole(3));
+      f.kind = static_cast<Kind>(whole(4));
     } else if (key == "integrator") {
       rk4 = whole(1) == 1;
     } else if (key == "ux" || key == "uy" || key == "uz") {
@@ -55,6 +55,28 @@ PrescribedField PrescribedField::from_parameters(const std::map<std::string, dou
                             "max_velocity, wall_lo, wall_hi, omega, cx, cy)");
     }
   }
+  for (const auto& entry : model.backend_files) {
+    if (entry.first != "field_file") {
+      throw InvalidArgument("prescribed: unknown file parameter '" + entry.first +
+                            "' (known: field_file)");
+    }
+    if (f.kind != Kind::kGrid) {
+      throw InvalidArgument("prescribed: field_file applies to field csv only (field is " +
+                            std::to_string(static_cast<int>(f.kind)) + ")");
+    }
+  }
+  if (f.kind == Kind::kGrid) {
+    const auto file = model.backend_files.find("field_file");
+    if (file == model.backend_files.end()) {
+      throw InvalidArgument("prescribed: field csv needs field_file (the CSV of the grid)");
+    }
+    if (!rk4) {
+      throw InvalidArgument(
+          "prescribed: field csv needs integrator rk4 (an interpolated field has no closed-form "
+          "flow map)");
+    }
+    f.grid = std::make_shared<const GridField>(GridField::read(file->second, model.box));
+  }
   if (f.kind == Kind::kPoiseuille && !(f.wall_hi > f.wall_lo)) {
     throw InvalidArgument("prescribed: wall_hi = " + format_value(f.wall_hi) +
                           " must exceed wall_lo = " + format_value(f.wall_lo));
@@ -80,6 +102,15 @@ void PrescribedField::velocity(const double* x, double* v) const {
     case Kind::kRotation:
       v[0] = -omega * (x[1] - cy);
       v[1] = omega * (x[0] - cx);
+      break;
+    case Kind::kGrid:
+      if (!grid->velocity(x, v)) {
+        throw Error(StatusCode::kOutOfRange,
+                    "at " + grid->point(x) + " lies outside the field's grid " + grid->extent() +
+                        " (" + grid->path() +
+                        "); a grid must cover every position the fluid particles reach",
+                    {{"field", "position"}, {"file", grid->path()}});
+      }
       break;
   }
 }
@@ -111,7 +142,7 @@ void PrescribedField::rk4(double* x, double dt) const {
 
 void PrescribedBackend::setup(const FluidModel& model, const ParticleState& initial,
                               const std::vector<std::vector<double>>& concentrations) {
-  field_ = PrescribedField::from_parameters(model.backend_parameters, rk4_);
+  field_ = PrescribedField::from_model(model, rk4_);
   model_ = model;
   pbox_ = PeriodicBox(model.box);
   state_ = initial;
@@ -124,8 +155,7 @@ void PrescribedBackend::setup(const FluidModel& model, const ParticleState& init
   state_.velocities.assign(3 * n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     pbox_.wrap(&state_.positions[3 * i]);
-    if (state_.kind(i) != ParticleKind::kWall)
-      field_.velocity(&state_.positions[3 * i], &state_.velocities[3 * i]);
+    if (state_.kind(i) != ParticleKind::kWall) set_velocity(i);
   }
   for (std::size_t i = 0; i < n; ++i) {
     for (int a = model.box.dimension; a < 3; ++a) state_.velocities[3 * i + a] = 0.0;
@@ -138,6 +168,16 @@ void PrescribedBackend::setup(const FluidModel& model, const ParticleState& init
   time_ = 0;
 }
 
+void PrescribedBackend::set_velocity(std::size_t i) {
+  try {
+    field_.velocity(&state_.positions[3 * i], &state_.velocities[3 * i]);
+  } catch (const Error& e) {
+    if (e.code() != StatusCode::kOutOfRange) throw;
+    throw InvalidArgument("prescribed: particle " + std::to_string(state_.ids[i]) + " " + e.what(),
+                          e.details());
+  }
+}
+
 void PrescribedBackend::move(double dt) {
   const std::size_t n = state_.size();
   const int dim = model_.box.dimension;
@@ -145,19 +185,29 @@ void PrescribedBackend::move(double dt) {
     if (state_.kind(i) == ParticleKind::kWall) continue;
     double* x = &state_.positions[3 * i];
     const double x0[3] = {x[0], x[1], x[2]};
-    if (rk4_) {
-      field_.rk4(x, dt);
-    } else {
-      field_.exact(x, dt);
+    try {
+      if (rk4_) {
+        field_.rk4(x, dt);
+      } else {
+        field_.exact(x, dt);
+      }
+      for (int a = dim; a < 3; ++a) x[a] = x0[a];  // inactive axes stay put
+      pbox_.wrap(x);
+      field_.velocity(x, &state_.velocities[3 * i]);
+    } catch (const Error& e) {
+      if (e.code() != StatusCode::kOutOfRange) throw;
+      throw Error(StatusCode::kOutOfRange,
+                  "prescribed: at step " + std::to_string(step_) + " particle " +
+                      std::to_string(state_.ids[i]) + " (from " + format_value(x0[0]) + ", " +
+                      format_value(x0[1]) + ") " + e.what(),
+                  e.details());
     }
-    for (int a = dim; a < 3; ++a) x[a] = x0[a];  // inactive axes stay put
-    pbox_.wrap(x);
-    field_.velocity(x, &state_.velocities[3 * i]);
     for (int a = dim; a < 3; ++a) state_.velocities[3 * i + a] = 0.0;
   }
 }
 
 StepReport PrescribedBackend::step(std::uint64_t step_index, double time_step) {
+  step_ = step_index;
   StepReport rep;
   rep.stable_dt = StabilityLimits::kNone;
   rep.limiting_criterion = "none";
@@ -212,7 +262,7 @@ void PrescribedBackend::restore_state(BlobReader& r, std::uint32_t version) {
   state_.positions = std::move(x);
   for (std::size_t i = 0; i < state_.size(); ++i) {
     if (state_.kind(i) == ParticleKind::kWall) continue;
-    field_.velocity(&state_.positions[3 * i], &state_.velocities[3 * i]);
+    set_velocity(i);
     for (int a = model_.box.dimension; a < 3; ++a) state_.velocities[3 * i + a] = 0.0;
   }
   c_ = std::move(c);

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <tuple>
 
 #include "sadr/common/log.hpp"
@@ -13,46 +14,40 @@
 
 namespace sadr::fluid {
 
-void StabilityLimits::check(double dt) const {
-  // Name the tightest limit dt breaks (the binding one), not the first one listed.
-  struct Rule {
-    double limit;
-    const char* name;
-    const char* formula;
-  };
-  const Rule rules[] = {
-      {acoustic, "acoustic", "0.25 (h/2)/(c0 + v_max)"},
-      {viscous, "viscous", "min(0.125 rho (h/2)^2/eta, Gershgorin bound)"},
-      {body_force, "body_force", "0.25 sqrt((h/2)/|a|)"},
-      {diffusion, "diffusion", "min(0.125 (h/2)^2/kappa, Gershgorin bound of the SPH Laplacian)"},
-      {reaction, "reaction", "1/|reaction Jacobian|"}};
-  const Rule* worst = nullptr;
-  for (const Rule& r : rules) {
-    if (dt > r.limit && (!worst || r.limit < worst->limit)) worst = &r;
-  }
-  if (!worst) return;
-  throw InvalidArgument(std::string("time step ") + format_value(dt) + " breaks the " +
-                            worst->name + " stability limit " + format_value(worst->limit) + " (" +
-                            worst->formula + "); reduce max_time_step or set force_time_step",
-                        {{"limit", worst->name},
-                         {"limit_value", format_value(worst->limit)},
-                         {"dt", format_value(dt)}});
-}
+namespace {
 
-bool warn_forced_substep(const StabilityLimits& limits, double dt) {
-  const auto [limit, name] = limits.smallest();
-  if (!(dt > limit)) return false;
-  static std::atomic<unsigned> warned{0};  // one bit per limit name: once per process
+/// Whether this is the first call for the limit `name` with this `said` set (one bit per limit
+/// name: once per process).
+bool first_time(std::atomic<unsigned>& said, const std::string& name) {
   const char* names[] = {"acoustic", "viscous", "body_force", "diffusion", "reaction"};
   unsigned bit = 1;
   while (bit < (1u << 5) && name != names[std::countr_zero(bit)]) bit <<= 1;
-  if (warned.fetch_or(bit) & bit) return false;
-  char text[200];
+  return !(said.fetch_or(bit) & bit);
+}
+
+}  // namespace
+
+bool warn_forced_substep(const StabilityLimits& limits, double dt) {
+  const auto [limit, name] = limits.smallest();
+  static std::atomic<unsigned> said{0};
+  if (!(dt > limit) || !first_time(said, name)) return false;
+  char text[160];
   std::snprintf(text, sizeof text,
-                "force_time_step: sub-step %.4g is %.3gx the %s stability limit %.4g; the results "
-                "may be wrong without any non-finite value (said once per limit)",
-                dt, dt / limit, name.c_str(), limit);
-  log::warn(text);
+                "force_time_step: sub-step %.4g is %.3gx the %s stability limit ", dt, dt / limit,
+                name.c_str());
+  log::warn(std::string(text) + format_value(limit) +
+            "; the results may be wrong without any non-finite value (said once per limit)");
+  return true;
+}
+
+bool warn_unbinding_cap(const StabilityLimits& limits, double max_time_step) {
+  const auto [limit, name] = limits.smallest();
+  static std::atomic<unsigned> said{0};
+  if (!(max_time_step > limit) || !first_time(said, name)) return false;
+  log::warn("max_time_step " + format_value(max_time_step) + " is above the " + name +
+            " stability limit " + format_value(limit) +
+            "; the sub-steps follow the limit (max_time_step is an upper bound; force_time_step "
+            "takes it as the sub-step). Said once per limit.");
   return true;
 }
 
@@ -66,9 +61,9 @@ Substep next_substep(const StabilityLimits& limits, double max_time_step, bool f
   }
   double allowed = out.limit;
   if (max_time_step > 0) {
-    if (!force) limits.check(std::min(max_time_step, remaining));
     if (force) warn_forced_substep(limits, std::min(max_time_step, remaining));
-    allowed = max_time_step;
+    if (!force) warn_unbinding_cap(limits, std::min(max_time_step, remaining));
+    allowed = force ? max_time_step : std::min(out.limit, max_time_step);
   }
   const double n = std::ceil(remaining / allowed * (1.0 - 1e-12));
   out.dt = (std::isfinite(n) && n > 1) ? remaining / n : remaining;
@@ -81,8 +76,8 @@ UniformSubsteps uniform_substeps(const StabilityLimits& limits, double max_time_
   std::tie(out.limit, out.limit_name) = limits.smallest();
   double dt_max = out.limit;
   if (max_time_step > 0.0) {
-    if (!force) limits.check(max_time_step);
     if (force) warn_forced_substep(limits, max_time_step);
+    if (!force) warn_unbinding_cap(limits, max_time_step);
     dt_max = force ? max_time_step : std::min(out.limit, max_time_step);
   }
   out.count =

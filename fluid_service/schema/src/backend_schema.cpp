@@ -15,6 +15,7 @@ std::string num(double v) {
 }
 std::string join(const std::vector<std::string>& v);
 std::string range(const Parameter& p) {
+  if (p.file) return "a file (path relative to the scene file)";
   if (!p.choices.empty()) return "one of " + join(p.choices);
   const bool lo = std::isfinite(p.min), hi = std::isfinite(p.max);
   std::string r = p.whole ? "a whole number, " : "";
@@ -56,6 +57,7 @@ int Parameter::choice_index(std::string_view n) const {
 
 /// The default as the scene writes it (a name for a choice).
 static std::string default_text(const Parameter& p) {
+  if (p.file) return "none";
   const auto k = static_cast<std::size_t>(p.default_value);
   return p.choices.empty() || k >= p.choices.size() ? num(p.default_value) : p.choices[k];
 }

@@ -221,6 +221,7 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
   if (in.has_open_boundary()) {
     m.open_boundary = open_boundary(in.open_boundary(), where + ".open_boundary");
   }
+  for (const auto& [key, path] : in.files()) m.backend_files[key] = path;
   for (const auto& [key, value] : in.parameters()) {
     if (key == "density_diffusion") {
       m.density_diffusion = value;

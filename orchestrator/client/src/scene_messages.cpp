@@ -147,6 +147,7 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
   m->set_density_mode(density_mode(f.density_mode));
   m->set_wall_model(wall_model(f.wall_model));
   for (const auto& [k, v] : f.parameters) (*m->mutable_parameters())[k] = v;
+  for (const auto& [k, v] : f.files) (*m->mutable_files())[k] = v;
   if (f.open_boundary) to_proto(*f.open_boundary, *m->mutable_open_boundary());
   if (f.boussinesq) {
     m->set_buoyancy_species(f.boussinesq->species);

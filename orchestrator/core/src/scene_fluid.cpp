@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <span>
 #include <string>
 
@@ -174,6 +176,22 @@ void read_parameters(SceneContext& ctx, const Field& f, const schema::Backend* b
       r.error(YamlReader::child(params, key),
               "unknown parameter of backend '" + backend->name + "'; allowed: " +
                   (known.empty() ? std::string("none") : known) + " (sadr backends)");
+      continue;
+    }
+    if (spec && spec->file) {  // a path, relative to the scene file; the backend reads it
+      const Field at = YamlReader::child(params, key);
+      const auto name = r.string(params, key, true);
+      if (!name) continue;
+      std::filesystem::path path(*name);
+      if (path.is_relative()) path = ctx.base_dir / path;
+      std::error_code ec;
+      path = std::filesystem::absolute(path, ec).lexically_normal();
+      if (!std::ifstream(path)) {
+        r.error(at, "cannot open '" + path.string() +
+                        "'; allowed: a readable file (paths are relative to the scene file)");
+        continue;
+      }
+      ctx.scene.fluid.files[key] = path.string();
       continue;
     }
     if (spec && !spec->choices.empty()) {  // a name; the wire carries its index

@@ -163,8 +163,9 @@ struct FluidModel {
   NoiseDistribution noise = NoiseDistribution::kGaussian;
   WallModel wall_model = WallModel::kStationary;
 
-  /// Largest sub-step [time]; 0 = automatic (the stability limit). A value above a
-  /// stability limit is refused unless force_time_step.
+  /// Upper bound on the sub-step [time]: sub-steps are <= min(binding stability limit,
+  /// max_time_step); 0 = the stability limits only. With force_time_step the sub-step is
+  /// max_time_step even where it breaks a limit (warned once per limit, warn_forced_substep).
   double max_time_step = 0.0;
   bool force_time_step = false;
   /// Blow-up band: |rho/rho_0 - 1| must stay below this (dimensionless).
@@ -174,6 +175,8 @@ struct FluidModel {
   /// Backend-specific numbers by name (e.g. tdpd: a, gamma, s1, r_cc, lambda, skin). Each
   /// backend rejects keys it does not know, naming them (sdpd and static take none).
   std::map<std::string, double> backend_parameters;
+  /// The backend's file parameters by name (absolute paths; the backend reads and checks them).
+  std::map<std::string, std::string> backend_files;
   std::vector<WallRegion> wall_regions;
   OpenBoundary open_boundary{};
 

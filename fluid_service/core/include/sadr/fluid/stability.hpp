@@ -43,14 +43,17 @@ struct StabilityLimits {
     take(reaction, "reaction");
     return best;
   }
-  /// Throws InvalidArgument naming the tightest limit that dt [time] breaks.
-  void check(double dt) const;
 };
 
 /// With force_time_step: warns (log::warn, once per limit name per process) when the forced
 /// sub-step dt [time] breaks the binding limit, since such a run may give wrong but finite
 /// results (bench/validation/stability_map.py); returns whether it warned.
 bool warn_forced_substep(const StabilityLimits& limits, double dt);
+
+/// Without force_time_step: warns (log::warn, once per limit name per process) when
+/// max_time_step [time] is above the binding limit, which then sets the sub-step (the user's cap
+/// does nothing there; the message names the limit and its value); returns whether it warned.
+bool warn_unbinding_cap(const StabilityLimits& limits, double max_time_step);
 
 /// One sub-step chosen by next_substep().
 struct Substep {
@@ -67,14 +70,15 @@ struct Substep {
 
 /// The next sub-step of what `remaining` [time] is left of an advance: `remaining` split
 /// evenly into the fewest pieces no longer than the binding limit, or than `max_time_step`
-/// when that is > 0 (refused through check() unless `force`). Lowers `stable_dt` and sets
+/// when that is > 0 and smaller (an upper bound; with `force`, max_time_step itself, warned
+/// through warn_forced_substep() when it breaks the limit). Lowers `stable_dt` and sets
 /// `criterion` when the binding limit is tighter than what they hold (StepReport fields).
 Substep next_substep(const StabilityLimits& limits, double max_time_step, bool force,
                      double remaining, double& stable_dt, std::string& criterion);
 
 /// The uniform rule: the fewest equal sub-steps of `time_step` no longer than the binding limit,
-/// or than min(limit, max_time_step) when max_time_step > 0 (refused through check() unless
-/// `force`, which takes max_time_step as it is and warns as next_substep() does).
+/// or than min(limit, max_time_step) when max_time_step > 0 (`force` takes max_time_step as it
+/// is and warns as next_substep() does).
 struct UniformSubsteps {
   std::uint32_t count = 1;  ///< sub-steps
   double dt = 0.0;          ///< their length [time]

@@ -16,7 +16,9 @@
 namespace sadr::fluid::schema {
 
 /// One entry of `fluid.parameters`: a number, or a name among `choices` (the scene writes the
-/// name; the loader sends its index, so the wire and the backend see the number k).
+/// name; the loader sends its index, so the wire and the backend see the number k), or with
+/// `file` a file the backend reads (the scene writes its path, relative to the scene file; the
+/// loader checks that it opens and sends it absolute in FluidModel.files).
 struct Parameter {
   std::string name;
   std::string unit;  ///< "dimensionless", "length", ... (docs/scene-format.md, units)
@@ -28,6 +30,7 @@ struct Parameter {
   std::string doc;             ///< one line
   /// Non-empty: the names of the values 0, 1, ... (then whole, min = 0, max = size - 1).
   std::vector<std::string> choices{};
+  bool file = false;  ///< a file's path, not a number (unit, default, range unused)
   /// Whether v is allowed; else `why` says the range ("[0, 1]", "a whole number in [-1, 2]").
   [[nodiscard]] bool allows(double v, std::string& why) const;
   /// The index of the name `n` among choices, or -1.

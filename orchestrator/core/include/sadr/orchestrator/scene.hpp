@@ -147,6 +147,7 @@ struct FluidSettings {
   double max_time_step = 0.0;  ///< upper bound on the fluid sub-step [time]; 0 = none
   bool force_time_step = false;
   std::map<std::string, double> parameters;  ///< backend-specific numbers
+  std::map<std::string, std::string> files;  ///< backend-specific files: absolute paths
   std::string wall_model = "stationary";     ///< one of the backend's wall models
   std::vector<WallPlane> wall_planes;        ///< wall_model "morris": one per wall region
   std::optional<OpenBoundarySettings> open_boundary;
