@@ -100,12 +100,12 @@ const std::vector<MalformedCase>& cases() {
        "  backend: static\n",
        "  backend: prescribed\n  parameters: {field: rotaton}\n",
        {"scene.yaml:14:23: fluid.parameters.field: unknown name 'rotaton'; did you mean "
-        "'rotation'? (allowed: uniform, shear, poiseuille, rotation)"}},
+        "'rotation'? (allowed: uniform, shear, poiseuille, rotation, csv)"}},
       {"parameter_choice_given_as_a_number",
        "  backend: static\n",
        "  backend: prescribed\n  parameters: {field: 3}\n",
        {"fluid.parameters.field: unknown name '3'",
-        "(allowed: uniform, shear, poiseuille, rotation)"}},
+        "(allowed: uniform, shear, poiseuille, rotation, csv)"}},
       // The wall model is one of the backend's (schema); morris needs a plane per wall region.
       {"wall_model_the_backend_lacks",
        "  backend: static\n",

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // sadr.fluid.v1.FluidModel -> sadr::fluid::FluidModel (validation at the boundary).
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <map>
 
