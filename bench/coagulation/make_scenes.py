@@ -64,11 +64,23 @@ INJURY = [
     ("XIa", "XI", "phi11*XIIa*XI/(PHI11M + XI)"),
     ("tPA", None, "(ktPAC + ktPAIIa*exp(-ktPAIIa_decay*t)*IIa + ktPAIa*Ia)*ENDO"),
 ]
-def chemistry_tail(p, regions):
-    """The assigned species, Table III as reactions and the injury terms."""
+def chemistry_tail(p, regions, fluxes=False):
+    """The assigned species, Table III as reactions and the injury terms: volume sources in
+    `regions`, or (fluxes) no injury reaction here, the fluxes follow as `boundary_fluxes`."""
     lines = [f'  - {{name: {name}, assigned: "{expr}"}}   # [{idx}]'
              for name, idx, expr in ref.ASSIGNED]
-    return lines + reactions_yaml(p) + injury_reactions("LF", regions)
+    return lines + reactions_yaml(p) + ([] if fluxes else injury_reactions("LF", regions))
+
+
+def injury_fluxes(factor):
+    """Table IV as what it is, Neumann flux laws on the injured wall (`boundary_fluxes`: the
+    fluid's y- face inside region `injury`), the flux density times L = `factor`."""
+    out = ["boundary_fluxes:   # li2015 Table IV on the injured wall 10 < x < 20 (docs/coagulation.md)"]
+    for gain, lose, expr in INJURY:
+        eq = f"{lose} -> {gain}" if lose else f"0 -> {gain}"
+        out.append(f'  - {{name: injury_{gain}, equation: "{eq}", face: y-, region: injury, '
+                   f'law: {{type: expression, expression: "{factor}*{expr}"}}}}')
+    return out
 
 
 def injury_reactions(factor, regions=""):
@@ -208,9 +220,12 @@ def channel(backend):
         + ("; here its x-y section)." if slab else ")."),
         f"# Poiseuille flow with u_max = {u_max} (1 mm/s). The inlet buffer (0 <= x <= 2.9 = r_c)",
         "# holds every species at C_i0; particles carried out at x = 100 re-enter it. The injured",
-        "# wall 10 < x < 20 (0.1 < x/L < 0.2) feeds the Table IV fluxes into the fluid layer next",
-        f"# to it (delta = {num(delta)}: the fluid particles there at t = 0, as rate densities x L /",
-        "# delta; Neumann flux laws are not built yet, docs/coagulation.md \"Injury\").",
+        "# wall 10 < x < 20 (0.1 < x/L < 0.2) feeds the Table IV fluxes into the fluid next to it",
+        ("# (tdpd has no per-particle boundary source: a layer of volume sources, delta = "
+         f"{num(delta)},\n# the fluid particles there at t = 0, rate densities x L / delta; "
+         "docs/coagulation.md \"Injury\")." if tdpd else
+         "# as Neumann flux laws (`boundary_fluxes`) on the first fluid layer at y = 0 (the\n"
+         "# particles there at t = 0; docs/coagulation.md \"Injury\")."),
         f"# Backend {what}.",
         "# docs/coagulation.md: the model, the corrections of the paper's tables, what was run.",
         f"name: coagulation_cascade{'' if tdpd else '_' + backend}",
@@ -259,7 +274,11 @@ def channel(backend):
             f"  parameters: {{field: poiseuille, max_velocity: {u_max}, wall_lo: 0, wall_hi: 20}}"
             "   # H = 20: the injury row y = 0 does not move",
         ]
-    lines += parameters_yaml(p, [("LF", ref.L_INJURY / delta)])
+    # tdpd has no per-particle boundary source (it refuses deterministic fluxes): there the
+    # injury stays a layer of volume sources of thickness delta; elsewhere it is the flux law
+    fluxes = not tdpd
+    lines += parameters_yaml(p, [("Linj", ref.L_INJURY)] if fluxes
+                             else [("LF", ref.L_INJURY / delta)])
     lines.append("species:")
     lines.append("  # diffusivity: " + ("kappa_i = (D_i - 0.00261) / 0.0645 (li2015 tDPD fit), "
                                          if tdpd else "D_i, ") + "D_i = 138.6 / Sc_i (Table II)")
@@ -269,7 +288,8 @@ def channel(backend):
         lines.append(f"  - {{name: {name}, stochastic: false, diffusivity: {diff:.6g}, "
                      f"initial: [{{concentration: {num(c0)}}}],   # [{idx}] Sc {sc}")
         lines.append(f"     boundaries: [{', '.join(bnd)}]}}")
-    lines += chemistry_tail(p, ", regions: [injury]")
+    lines += chemistry_tail(p, ", regions: [injury]", fluxes)
+    lines += injury_fluxes("Linj") if fluxes else []
     lines += [
         f"time: {{coupling_step: {num(tau)}, end: {num(end)}}}",
         "output:",
