@@ -72,25 +72,28 @@ def chemistry_tail(p, regions, fluxes=False):
     return lines + reactions_yaml(p) + ([] if fluxes else injury_reactions("LF", regions))
 
 
+def injury_entries(factor, before="", after=""):
+    """Table IV's terms as scene entries, the flux density times `factor`; `before` / `after`
+    the keys placing them (a face and region for a flux, regions for a volume source)."""
+    out = []
+    for gain, lose, expr in INJURY:
+        eq = f"{lose} -> {gain}" if lose else f"0 -> {gain}"
+        out.append(f'  - {{name: injury_{gain}, equation: "{eq}", {before}'
+                   f'law: {{type: expression, expression: "{factor}*{expr}"}}{after}}}')
+    return out
+
+
 def injury_fluxes(factor):
     """Table IV as what it is, Neumann flux laws on the injured wall (`boundary_fluxes`: the
     fluid's y- face inside region `injury`), the flux density times L = `factor`."""
-    out = ["boundary_fluxes:   # li2015 Table IV on the injured wall 10 < x < 20 (docs/coagulation.md)"]
-    for gain, lose, expr in INJURY:
-        eq = f"{lose} -> {gain}" if lose else f"0 -> {gain}"
-        out.append(f'  - {{name: injury_{gain}, equation: "{eq}", face: y-, region: injury, '
-                   f'law: {{type: expression, expression: "{factor}*{expr}"}}}}')
-    return out
+    return (["boundary_fluxes:   # li2015 Table IV on the injured wall 10 < x < 20 (docs/coagulation.md)"]
+            + injury_entries(factor, before="face: y-, region: injury, "))
 
 
 def injury_reactions(factor, regions=""):
     """Table IV as volume sources: flux density x L / delta, `factor` the parameter name."""
-    out = ["  # Table IV injury terms as volume sources (flux density x L / delta)"]
-    for gain, lose, expr in INJURY:
-        eq = f"{lose} -> {gain}" if lose else f"0 -> {gain}"
-        out.append(f'  - {{name: injury_{gain}, equation: "{eq}", '
-                   f'law: {{type: expression, expression: "{factor}*{expr}"}}{regions}}}')
-    return out
+    return (["  # Table IV injury terms as volume sources (flux density x L / delta)"]
+            + injury_entries(factor, after=regions))
 
 
 def num(v):
