@@ -247,4 +247,18 @@ const std::vector<std::uint32_t>& region_particles(const RegionMap& regions, std
                         "' (known: " + (known.empty() ? "none" : known) + ")");
 }
 
+bool boundary_flux_sites(const common::v1::Reaction& rx, std::string_view where,
+                         std::vector<std::uint32_t>& particles, std::vector<double>& areas) {
+  if (rx.boundary_particles_size() == 0 && rx.boundary_areas_size() == 0) return false;
+  if (rx.regions_size() > 0 || rx.boundary_particles_size() != rx.boundary_areas_size()) {
+    throw InvalidArgument(std::string(where) +
+                          ": a boundary flux has no regions and one area per particle (" +
+                          std::to_string(rx.boundary_particles_size()) + " particles, " +
+                          std::to_string(rx.boundary_areas_size()) + " areas)");
+  }
+  particles.assign(rx.boundary_particles().begin(), rx.boundary_particles().end());
+  areas.assign(rx.boundary_areas().begin(), rx.boundary_areas().end());
+  return true;
+}
+
 }  // namespace sadr::wire

@@ -179,16 +179,7 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     spec.products = stoichiometry(rx.products(), m, here + ".products");
     spec.rate = rx.rate();
     if (rx.has_law()) spec.law = wire::from_proto(rx.law(), here + ".law");
-    if (rx.boundary_particles_size() > 0 || rx.boundary_areas_size() > 0) {
-      if (rx.regions_size() > 0 || rx.boundary_particles_size() != rx.boundary_areas_size()) {
-        throw InvalidArgument(here +
-                              ": a boundary flux has no regions and one area per particle (" +
-                              std::to_string(rx.boundary_particles_size()) + " particles, " +
-                              std::to_string(rx.boundary_areas_size()) + " areas)");
-      }
-      spec.particles.assign(rx.boundary_particles().begin(), rx.boundary_particles().end());
-      spec.boundary_area.assign(rx.boundary_areas().begin(), rx.boundary_areas().end());
-    }
+    wire::boundary_flux_sites(rx, here, spec.particles, spec.boundary_area);
     m.reactions.push_back(std::move(spec));
   }
 

@@ -110,16 +110,7 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
     }
     std::sort(out.voxels.begin(), out.voxels.end());  // regions may overlap
     out.voxels.erase(std::unique(out.voxels.begin(), out.voxels.end()), out.voxels.end());
-    if (rx.boundary_particles_size() > 0 || rx.boundary_areas_size() > 0) {
-      if (rx.regions_size() > 0 || rx.boundary_particles_size() != rx.boundary_areas_size()) {
-        throw InvalidArgument(here +
-                              ": a boundary flux has no regions and one area per particle (" +
-                              std::to_string(rx.boundary_particles_size()) + " particles, " +
-                              std::to_string(rx.boundary_areas_size()) + " areas)");
-      }
-      out.voxels.assign(rx.boundary_particles().begin(), rx.boundary_particles().end());
-      out.areas.assign(rx.boundary_areas().begin(), rx.boundary_areas().end());
-    }
+    wire::boundary_flux_sites(rx, here, out.voxels, out.areas);
     m.reactions.push_back(std::move(out));
   }
   m.frozen_species.assign(in.frozen_species().begin(), in.frozen_species().end());

@@ -67,5 +67,10 @@ RegionMap regions_from_proto(
 /// Particles of `name`; throws InvalidArgument listing the known regions if absent.
 const std::vector<std::uint32_t>& region_particles(const RegionMap& regions, std::string_view name,
                                                    std::string_view where);
+/// The sites of a boundary-flux reaction (`boundary_particles` with one `boundary_areas`
+/// entry each, and no regions) into `particles` / `areas`; false if `rx` is no boundary flux.
+/// Throws InvalidArgument at `where` if the two lists disagree or regions are also given.
+bool boundary_flux_sites(const common::v1::Reaction& rx, std::string_view where,
+                         std::vector<std::uint32_t>& particles, std::vector<double>& areas);
 
 }  // namespace sadr::wire
