@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "sadr/common/rng.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd/tdpd_backend.hpp"
 
 namespace {
 

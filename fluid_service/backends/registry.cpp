@@ -3,9 +3,9 @@
 
 #include "prescribed/prescribed_backend.hpp"
 #include "sadr/fluid/builtin_backends.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
 #include "sdpd/sdpd_backend.hpp"
 #include "static/static_backend.hpp"
+#include "tdpd/tdpd_backend.hpp"
 
 namespace sadr::fluid {
 

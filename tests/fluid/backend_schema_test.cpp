@@ -10,7 +10,7 @@
 #include "sadr/fluid/backend_schema.hpp"
 #include "sadr/fluid/builtin_backends.hpp"
 #include "sadr/fluid/kernel.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd/tdpd_backend.hpp"
 
 namespace sadr::fluid {
 namespace {

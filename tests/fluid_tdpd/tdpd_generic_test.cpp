@@ -2,7 +2,7 @@
 /// Instantiates the backend-generic property tests for "tdpd", "sdpd" and "static".
 #include "backend_generic_test.hpp"
 #include "sadr/fluid/builtin_backends.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd/tdpd_backend.hpp"
 
 namespace sadr::fluid::generic_test {
 namespace {

@@ -13,9 +13,9 @@
 #include "sadr/common/rng.hpp"
 #include "sadr/fluid/kernel.hpp"
 #include "sadr/fluid/pair_noise_batch.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
-#include "sadr/fluid/tdpd_cells.hpp"
-#include "tdpd_pair_block.hpp"
+#include "tdpd/tdpd_backend.hpp"
+#include "tdpd/tdpd_cells.hpp"
+#include "tdpd/tdpd_pair_block.hpp"
 
 namespace sadr::fluid {
 namespace {

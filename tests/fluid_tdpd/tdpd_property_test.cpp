@@ -7,7 +7,7 @@
 #include <numeric>
 
 #include "backend_generic_scene.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd/tdpd_backend.hpp"
 
 namespace sadr::fluid {
 namespace {

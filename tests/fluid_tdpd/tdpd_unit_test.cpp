@@ -11,7 +11,7 @@
 
 #include "sadr/common/status.hpp"
 #include "sadr/fluid/builtin_backends.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd/tdpd_backend.hpp"
 
 namespace sadr::fluid {
 namespace {

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "sadr/common/status.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
-#include "sadr/fluid/tdpd_walls.hpp"
+#include "tdpd/tdpd_backend.hpp"
+#include "tdpd/tdpd_walls.hpp"
 
 namespace sadr::fluid {
 namespace {

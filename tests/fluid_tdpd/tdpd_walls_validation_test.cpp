@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "sadr/common/rng.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd/tdpd_backend.hpp"
 #include "tdpd_lattice.hpp"
 
 namespace sadr::fluid {

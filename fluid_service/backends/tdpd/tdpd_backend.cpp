@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file tdpd_backend.cpp
 /// tDPD initialisation, Groot-Warren modified velocity-Verlet, limits, health and restart.
-#include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd_backend.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file tdpd_cells.cpp
 /// tdpd::build_half_list (see tdpd_cells.hpp).
-#include "sadr/fluid/tdpd_cells.hpp"
+#include "tdpd_cells.hpp"
 
 #include <algorithm>
 #include <array>

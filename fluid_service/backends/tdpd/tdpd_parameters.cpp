@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "sadr/common/status.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd_backend.hpp"
 
 namespace sadr::fluid {
 namespace {

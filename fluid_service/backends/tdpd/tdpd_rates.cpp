@@ -25,7 +25,7 @@
 #include "sadr/common/status.hpp"
 #include "sadr/fluid/pair_noise_batch.hpp"
 #include "sadr/fluid/parallel.hpp"
-#include "sadr/fluid/tdpd_backend.hpp"
+#include "tdpd_backend.hpp"
 #include "tdpd_forces.hpp"
 #include "tdpd_pair_block.hpp"
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file tdpd_walls.cpp
 /// Effective walls of li2015 sec. II B (see tdpd_walls.hpp and docs/tdpd.md).
-#include "sadr/fluid/tdpd_walls.hpp"
+#include "tdpd_walls.hpp"
 
 #include <algorithm>
 #include <cmath>

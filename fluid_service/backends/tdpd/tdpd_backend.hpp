@@ -33,8 +33,8 @@
 #include "sadr/fluid/slab_scheduler.hpp"
 #include "sadr/fluid/species_transport.hpp"
 #include "sadr/fluid/stability.hpp"
-#include "sadr/fluid/tdpd_cells.hpp"
-#include "sadr/fluid/tdpd_walls.hpp"
+#include "tdpd_cells.hpp"
+#include "tdpd_walls.hpp"
 
 namespace sadr::fluid {
 

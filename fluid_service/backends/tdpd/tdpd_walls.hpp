@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-/// \file sadr/fluid/tdpd_walls.hpp
+/// \file tdpd_walls.hpp
 /// Planar walls without frozen particles (li2015 sec. II B): effective boundary forces
 /// (conservative f_C, dissipative gamma_tau / gamma_n with the paper's caps, random parts by
 /// fluctuation-dissipation), effective concentration fluxes (Dirichlet via phi(h), Neumann via
