@@ -41,7 +41,7 @@ Usage: coupled_step.py [--sadr build/release/bin/sadr] [--sizes 10000 100000] [-
                        [--taus 0.05 0.1 0.2] [--fluid-only]
 Writes bench/results/coupled_step.json and .md.
 """
-import argparse, hashlib, json, math, os, statistics, subprocess, sys, tempfile
+import argparse, hashlib, json, math, os, shutil, statistics, subprocess, sys, tempfile
 
 SCENE = """name: coupled_bench_{n}
 dimension: 2
@@ -161,6 +161,7 @@ def main():
             row["fluid_only_wall_ms_per_step"] = fluid_walls
             row["fluid_only_wall_median"] = statistics.median(fluid_walls)
         rows.append(row)
+        shutil.rmtree(work, ignore_errors=True)  # the runs' scenes and outputs: read above
         m = row["ms_per_step"]
         print(f"N={L*L:7d} tau {tau:g} ({row['substeps_per_step']:g} sub-steps) {mode:9s}  fluid {m['fluid']:8.2f}  transfer {m['transfer']:7.2f}  rebuild {m['graph_rebuild']:7.2f}"
               f"  nsm {m['nsm']:7.2f}  total {m['total']:8.2f} ms/step   transfer+rebuild = {100*row['transfer_plus_rebuild_share']:.1f}%"
