@@ -180,11 +180,49 @@ def analyse(runs, ra, h, dx, molecules, threshold, rate_window, window, start=No
         if len(per_real) > 1:
             e = np.array([s[q + "_err_digitised"] for s in per_real])
             result[q + "_err_digitised_realization_sd"] = float(e.std(ddof=1))
+    if len(per_run) > 1:
+        result["realization_noise"] = realization_noise(per_run, t0, t1)
     nu = np.array([float(np.mean(m["Q"]) / 2) for m in chosen])
     result["Nu_half_sd_frames"] = float(nu.std(ddof=1)) if len(nu) > 1 else 0.0
     result["profiles"] = {"x_ref": case.x_ref.tolist(),
                           **{q + "_ref": average(chosen)[q + "_ref"].tolist() for q in ("theta", "vstar")}}
     return result
+
+
+def realization_noise(per_run, t0, t1):
+    """Do frames and realizations count alike? From R realizations with the same frame times in the
+    window: sigma_within = the frame-to-frame standard deviation inside a realization (pooled over
+    the realizations), sigma_across = the standard deviation across realizations at equal times
+    (pooled over the times), and sd_of_means = the standard deviation across realizations of each
+    realization's F-frame window mean, against its prediction sigma_within / sqrt(F) for independent
+    frames. Each is the root mean square over the digitised centre-line points; the metric columns
+    are ||.||_2 / n of the same, for one realization's window mean and for the ensemble's."""
+    sel = [[m for m in r["ms"] if t0 - 1e-9 <= m["time"] <= t1 + 1e-9] for r in per_run]
+    times = [[round(m["time"], 6) for m in s] for s in sel]
+    common = sorted(set(times[0]).intersection(*map(set, times[1:])))
+    out = {"realizations": len(per_run), "frames_per_realization": len(common)}
+    if len(common) < 2:
+        return out
+    for q in ("theta", "vstar"):
+        # prof[r, f, i]: realization r, frame f (common times), point i
+        prof = np.array([[m[q + "_dig"] for m in s if round(m["time"], 6) in common] for s in sel])
+        R, F, n = prof.shape
+        within = prof.var(axis=1, ddof=1).mean(axis=0)  # per point, pooled over realizations
+        across = prof.var(axis=0, ddof=1).mean(axis=0)  # per point, pooled over times
+        means = prof.mean(axis=1)  # R x n
+        var_means = means.var(axis=0, ddof=1)
+        out[q] = {"sigma_within_rms": float(np.sqrt(within.mean())),
+                  "sigma_across_rms": float(np.sqrt(across.mean())),
+                  "sd_of_window_means_rms": float(np.sqrt(var_means.mean())),
+                  "predicted_sd_of_window_means_rms": float(np.sqrt(within.mean() / F)),
+                  "metric_one_window_mean": float(np.sqrt(var_means.sum()) / n),
+                  "predicted_metric_one_window_mean": float(np.sqrt(within.sum() / F) / n),
+                  "metric_ensemble_mean": float(np.sqrt(var_means.sum()) / n / math.sqrt(R)),
+                  "predicted_metric_ensemble_mean": float(np.sqrt(within.sum() / F) / n / math.sqrt(R)),
+                  "lag1_autocorrelation": float(np.mean([
+                      np.sum((p[1:] - p.mean(axis=0)) * (p[:-1] - p.mean(axis=0))) /
+                      max(np.sum((p - p.mean(axis=0)) ** 2), 1e-300) for p in prof]))}
+    return out
 
 
 def against(runs, det_run, ra, h, dx, molecules, start):
@@ -250,6 +288,20 @@ def main():
         for name, v in res["window_rates"].items():
             print("  drift over the window, %-16s %s per unit time" % (name, ", ".join(
                 "%+.2e +- %.1e" % tuple(x) for x in v)))
+        rn = res.get("realization_noise")
+        if rn and "theta" in rn:
+            print("  realizations against frames (%d realizations x %d common frames):"
+                  % (rn["realizations"], rn["frames_per_realization"]))
+            for q in ("theta", "vstar"):
+                d = rn[q]
+                print("    %-5s sigma within a realization %.4g, across realizations at equal t %.4g; "
+                      "sd of the window means %.4g (predicted sigma_within/sqrt(F) %.4g); in the metric: "
+                      "window mean %.3g (predicted %.3g), ensemble mean %.3g (predicted %.3g); "
+                      "lag-1 autocorrelation %.2f"
+                      % (q, d["sigma_within_rms"], d["sigma_across_rms"], d["sd_of_window_means_rms"],
+                         d["predicted_sd_of_window_means_rms"], d["metric_one_window_mean"],
+                         d["predicted_metric_one_window_mean"], d["metric_ensemble_mean"],
+                         d["predicted_metric_ensemble_mean"], d["lag1_autocorrelation"]))
     if args.against:
         res["against"] = against(run_dirs(args.runs), args.against, args.ra, args.h, args.dx, args.molecules,
                                  args.start or 0.0)

@@ -1,13 +1,15 @@
 #!/bin/bash
-# Regenerates docs/natural-convection.md's steady-state table and docs/images/natural_convection_*.png:
-# runs the deterministic scenes (Ra = 1e4, 1e5, 1e6, 81^2) and the stochastic Ra = 1e4 scene at
-# N = 10 and N = 100 molecules per particle to t = 50 (one thread each, two at a time), then
-# analyse.py (steady-state criterion, window averages), table.py and plots.py.
-# 5 runs x 250-600 s of CPU (one core each); the runs already present in OUT are reused (delete to
-# redo). In the docs' table only the deterministic Ra = 1e4 row is a run of the current scene (Morris
-# walls) to t = 50; the others are runs of the scenes' previous versions (stationary walls, c0 = 3.5
-# at Ra >= 1e5) stopped at t = 52.5 (Ra = 1e5, 1e6) and t = 34 (N = 100): this script runs the current
-# scenes, with windows ending at 50. It has not been run end to end (about 45 CPU minutes).
+# Regenerates docs/natural-convection.md's tables and docs/images/natural_convection_*.png from the
+# current scenes (Morris walls; c0 = 3 at Ra = 1e4, 4 at 1e5 and 1e6):
+#   * the deterministic scenes at 81^2 (Ra = 1e4, 1e5 to t = 50; 1e6 to t = 70),
+#   * the stochastic Ra = 1e4 scene at N = 10 and N = 100 molecules per particle (t = 50),
+#   * the convergence runs at Ra = 1e4: 41^2 (the reduced test scene) and 121^2 to t = 40,
+#   * an ensemble of 4 realizations at N = 10 restarted from the N = 10 run's t = 30 frame
+#     (8 time units each; restart_scene.py), to check that frames and realizations count alike,
+# then analyse.py (steady-state criterion, window averages, noise), table.py, convergence.py and
+# plots.py. Runs go one thread each, two at a time; each run's CPU time is in OUT/NAME.time
+# (/usr/bin/time -v). The runs already present in OUT are reused (delete a run's folder to redo it).
+# About 60 CPU minutes in all (one core each; docs/natural-convection.md, "Cost").
 #
 #   bench/natural_convection/reproduce.sh BIN_DIR OUT
 set -euo pipefail
@@ -19,28 +21,33 @@ PY=/usr/bin/python3
 mkdir -p "$OUT"
 V=$($PY -c 'print(repr((1 / 81) ** 2))')
 
-run() {  # name scene [args...]: sadr run to t = 50 unless OUT/name exists
-  local name=$1 scene=$2
-  shift 2
-  [ -d "$OUT/$name/frames" ] && return 0
-  "$BIN/sadr" run "$ROOT/$scene" --fluid-threads 1 -q --stop-at 50 -o "$OUT/$name" "$@"
+run() {  # name stop scene [args...]: sadr run to t = stop unless OUT/name exists
+  local name=$1 stop=$2 scene=$3
+  shift 3
+  [ -d "$OUT/$name/frames" ] || [ -d "$OUT/$name/realization_0000" ] && return 0
+  /usr/bin/time -v -o "$OUT/$name.time" \
+    "$BIN/sadr" run "$scene" --fluid-threads 1 -q --stop-at "$stop" -o "$OUT/$name" "$@"
 }
 stochastic() {  # N: the --set arguments for N molecules per particle at theta = 1
   $PY -c "import sys; n = float(sys.argv[1]); v = $V
 print('--set species[theta].boundaries[0].count=%d --set fluid.boussinesq.coefficient=%.16g --set fluid.boussinesq.reference=%.16g' % (round(n), v / n, 0.24 * n / v))" "$1"
 }
-
-run ra1e4 examples/natural_convection_ra1e4.yaml & p1=$!
-run ra1e5 examples/natural_convection_ra1e5.yaml & p2=$!
+EX=$ROOT/examples
+run ra1e4 50 "$EX/natural_convection_ra1e4.yaml" & p1=$!
+run st4_n10 50 "$EX/natural_convection_ra1e4_stochastic.yaml" & p2=$!
 wait $p1 && wait $p2
-run ra1e6 examples/natural_convection_ra1e6.yaml & p1=$!
-run st4_n10 examples/natural_convection_ra1e4_stochastic.yaml & p2=$!
+run ra1e4_121 40 "$HERE/natural_convection_ra1e4_121.yaml" & p1=$!
+run ra1e4_41 40 "$ROOT/tests/data/scenes/natural_convection_ra1e4_coarse.yaml" & p2=$!
 wait $p1 && wait $p2
-# Ra = 1e6 drifts until about t = 54: continue it to t = 70 from its checkpoint
-[ -f "$OUT/ra1e6/frames/frame_000035.csv" ] ||
-  SADR_FLUID_THREADS=1 "$BIN/sadr" resume "$OUT/ra1e6/checkpoint/checkpoint.json" -q --stop-at 70
+# the ensemble: 4 realizations restarted from the N = 10 run's frame at t = 30, t = 0-8
+$PY "$HERE/restart_scene.py" "$OUT/st4_n10/frames/frame_000030.csv" "$EX/natural_convection_ra1e4_stochastic.yaml" \
+  "$OUT/st4_n10_restart30" --end 8 --every 1
+run st4_n10_ens 8 "$OUT/st4_n10_restart30/scene.yaml" -r 4 -j 1
+run ra1e5 50 "$EX/natural_convection_ra1e5.yaml" & p1=$!
+run ra1e6 70 "$EX/natural_convection_ra1e6.yaml" & p2=$!
+wait $p1 && wait $p2
 # shellcheck disable=SC2046
-run st4_n100 examples/natural_convection_ra1e4_stochastic.yaml $(stochastic 100)
+run st4_n100 50 "$EX/natural_convection_ra1e4_stochastic.yaml" $(stochastic 100)
 
 A="$PY $HERE/analyse.py"
 $A "$OUT/ra1e4" --ra 1e4 --json "$OUT/a4.json" > "$OUT/a4.txt" || true
@@ -50,7 +57,20 @@ $A "$OUT/ra1e6" --ra 1e6 --from 54 --json "$OUT/a6.json" > "$OUT/a6.txt" || true
 # stochastic: the criterion cannot see through the per-frame noise; the deterministic run's t = 26 (docs)
 $A "$OUT/st4_n10" --ra 1e4 --molecules 10 --from 26 --against "$OUT/ra1e4" --json "$OUT/s10.json" > "$OUT/s10.txt" || true
 $A "$OUT/st4_n100" --ra 1e4 --molecules 100 --from 26 --against "$OUT/ra1e4" --json "$OUT/s100.json" > "$OUT/s100.txt" || true
-$PY "$HERE/table.py" "$OUT"/a4.json "$OUT"/s10.json "$OUT"/s100.json "$OUT"/a5.json "$OUT"/a6.json
+# the ensemble: frames 1-8 after the restart (t = 31-38 of the run it starts from)
+$A "$OUT/st4_n10_ens" --ra 1e4 --molecules 10 --from 1 --json "$OUT/s10_ens.json" > "$OUT/s10_ens.txt" || true
+# one realization over the same 8 time units, for comparison
+$A "$OUT/st4_n10" --ra 1e4 --molecules 10 --from 31 --window 7 --json "$OUT/s10_31.json" > "$OUT/s10_31.txt" || true
+# convergence at Ra = 1e4: the three resolutions over the same window t = 26-40
+$A "$OUT/ra1e4_41" --ra 1e4 --h "$($PY -c 'print(3/41)')" --dx "$($PY -c 'print(1/41)')" --from 26 --window 14 \
+  --json "$OUT/c41.json" > "$OUT/c41.txt" || true
+$A "$OUT/ra1e4" --ra 1e4 --from 26 --window 14 --json "$OUT/c81.json" > "$OUT/c81.txt" || true
+$A "$OUT/ra1e4_121" --ra 1e4 --h "$($PY -c 'print(3/121)')" --dx "$($PY -c 'print(1/121)')" --from 26 --window 14 \
+  --json "$OUT/c121.json" > "$OUT/c121.txt" || true
+
+$PY "$HERE/table.py" "$OUT"/a4.json "$OUT"/s10.json "$OUT"/s100.json "$OUT"/s10_ens.json="4 real. x 8 frames, restarted from t = 30" \
+  "$OUT"/a5.json "$OUT"/a6.json | tee "$OUT/table.md"
+$PY "$HERE/convergence.py" "$OUT"/c41.json=41 "$OUT"/c81.json=81 "$OUT"/c121.json=121 | tee "$OUT/convergence.md"
 last() { ls "$OUT/$1"/frames/frame_*.csv | tail -1; }
 $PY "$HERE/plots.py" --analysis "$OUT"/a4.json "$OUT"/a5.json "$OUT"/a6.json \
   --frames "$(last ra1e4)" "$(last ra1e5)" "$(last ra1e6)" --out "$ROOT/docs/images"
