@@ -11,14 +11,19 @@
 #include <filesystem>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "sadr/common/log.hpp"
+#include "sadr/fluid/fluid_service.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/diagnostics.hpp"
 #include "sadr/orchestrator/ensemble_accumulator.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
+#include "sadr/orchestrator/scene_messages.hpp"
+#include "sadr/orchestrator/seeds.hpp"
+#include "sadr/orchestrator/service_clients.hpp"
 #include "sadr/orchestrator/work_estimate.hpp"
 
 namespace sadr::orchestrator {
@@ -68,11 +73,59 @@ void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
 
 namespace {
 
+/// The fluid backend's sub-steps ahead at t = 0, from the backend itself: a fluid_service
+/// handler in this process takes the run's Init message (before any service is started, so
+/// that validate and the plan of run/resume can print it). Nothing if the plan does not step
+/// the fluid, or if the backend refuses the initial state (the run then fails at the service's
+/// init with the service's message, as without this).
+std::optional<FluidSubsteps> fluid_substeps_at_t0(const Scene& scene, const Plan& plan) {
+  if (!plan.fluid_service || !plan.fluid_stepping) return std::nullopt;
+  struct QuietLog {  // the handler's own lines are the service's, printed when it runs
+    log::Level saved = log::level();
+    QuietLog() { log::set_level(log::Level::kError); }
+    ~QuietLog() { log::set_level(saved); }
+  } quiet;
+  fluid::v1::FluidRequest request;
+  try {
+    *request.mutable_init() = make_fluid_init(scene, plan, realization_seed(scene.seed, 0));
+  } catch (const std::exception&) {
+    return std::nullopt;  // the run says why, where it builds the same message
+  }
+  std::string bytes;
+  // On a thread of its own, as the embedded service runs: the handler sets that thread's
+  // OpenMP thread count (SADR_FLUID_THREADS), not this one's.
+  std::thread([&] {
+    try {
+      fluid::FluidServiceHandler handler;
+      bool shutdown = false;
+      bytes = handler.handle(request.SerializeAsString(), shutdown);
+    } catch (const std::exception&) {
+      bytes.clear();
+    }
+  }).join();
+  fluid::v1::FluidReply reply;
+  if (!reply.ParseFromString(bytes) || !wire::from_proto(reply.status()).ok()) return std::nullopt;
+  return fluid_substeps(reply.init());
+}
+
+/// estimate_work() with the backend's sub-steps at t = 0 once the hard limits (memory, disk)
+/// allow initialising the backend here.
+WorkEstimate estimate_with_backend(const Scene& scene, const Plan& plan, const fs::path& out,
+                                   int realizations, int jobs) {
+  const MachineLimits machine = machine_limits(out);
+  WorkEstimate e = estimate_work(scene, plan, machine, realizations, jobs);
+  if (!e.hard.empty()) return e;
+  if (const auto fluid = fluid_substeps_at_t0(scene, plan)) {
+    e = estimate_work(scene, plan, machine, realizations, jobs, &*fluid);
+  }
+  return e;
+}
+
 /// The work estimate, printed with the plan, then its limits: hard ones always
 /// refuse; soft ones refuse unless --allow-large (then they are warnings).
 void check_work(const Scene& scene, const Plan& plan, const CliOptions& o, const fs::path& out,
                 int realizations, int jobs) {
-  const WorkEstimate e = estimate_work(scene, plan, machine_limits(out), realizations, jobs);
+  const WorkEstimate e = estimate_with_backend(scene, plan, out, realizations, jobs);
   if (!o.quiet) {
     for (const auto& line : e.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
   }
@@ -235,7 +288,7 @@ int cmd_validate(const CliOptions& o) {
     print_plan(scene, plan, o);
     const fs::path out =
         scene.output.directory.empty() ? fs::path(".") : fs::path(scene.output.directory);
-    const WorkEstimate e = estimate_work(scene, plan, machine_limits(out));
+    const WorkEstimate e = estimate_with_backend(scene, plan, out, 1, 1);
     for (const auto& line : e.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
     enforce_limits(e, true);
     for (const auto& line : e.soft) {

@@ -187,6 +187,37 @@ TEST(StaticBackend, AplusBReactionConservesDifference) {
   EXPECT_NEAR(b.concentrations(0)[0] - b.concentrations(1)[0], 1.0, 1e-12);
 }
 
+// The bound the service reports after init (InitReply, the plan's figure) has the reaction limit:
+// a stiff decay sets it, and the first advance takes exactly ceil(T / dt) sub-steps (the limit of
+// a first-order law does not depend on the concentrations). The orchestrator's former estimate
+// (diffusion only) said 1 here.
+TEST(StaticBackend, SubstepBoundNamesTheReactionLimit) {
+  test::LatticeSpec ls;
+  ls.n = {6, 6, 1};
+  FluidModel m;
+  ParticleState p = test::make_lattice(ls, m.box);
+  m.smoothing_length = 2.0;
+  m.species.push_back({"A", 1e-4, true, {}, {}});
+  m.reactions.push_back({"decay", {{0, 1}}, {}, 40.0, {}, {}});
+  StaticBackend b;
+  b.initialize(m, p, {std::vector<double>(p.size(), 1.0)});
+  const SubstepBound bound = b.current_substep_bound();
+  EXPECT_EQ(bound.limit_name, "reaction");
+  EXPECT_EQ(bound.criterion, "reaction");
+  EXPECT_EQ(bound.dt, bound.limit);
+  const double predicted = std::ceil(1.0 / bound.dt * (1.0 - 1e-12));
+  EXPECT_GT(predicted, 10.0);
+  const auto rep = b.advance(0, 1.0);
+  EXPECT_EQ(rep.substeps, static_cast<std::uint32_t>(predicted));
+  EXPECT_EQ(rep.limiting_criterion, "reaction");
+  // max_time_step below the limit caps it and is named; force takes it as it is
+  m.max_time_step = 0.5 * bound.limit;
+  StaticBackend capped;
+  capped.initialize(m, p, {std::vector<double>(p.size(), 1.0)});
+  EXPECT_EQ(capped.current_substep_bound().criterion, "max_time_step");
+  EXPECT_EQ(capped.current_substep_bound().dt, m.max_time_step);
+}
+
 // --- reaction sites (ReactionSpec::kinds / ::particles) and WallCondition::kFree -------------
 
 // 1D chain of `n` fluid particles with `layers` wall layers at each end, one species.

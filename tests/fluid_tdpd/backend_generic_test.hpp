@@ -8,13 +8,16 @@
 /// Asserted: (1) total momentum is conserved to rounding with noise on (pairwise-antisymmetric
 /// noise), for backends that move particles; (2) same seed -> bit-identical state, different
 /// seed -> different state (when the backend has thermal noise); (3) save/restore continues
-/// bit-identically; (4) 1 thread and 2 threads give bit-identical states (OpenMP builds).
+/// bit-identically; (4) 1 thread and 2 threads give bit-identical states (OpenMP builds);
+/// (5) current_substep_bound() at t = 0 (the figure the fluid service reports to the plan)
+/// predicts the first advance's sub-steps and leaves the trajectory as it is.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include "backend_generic_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -55,6 +58,25 @@ inline void expect_identical(const FluidBackend& a, const FluidBackend& b) {
 }
 
 class BackendGenericTest : public ::testing::TestWithParam<BackendCase> {};
+
+TEST_P(BackendGenericTest, SubstepBoundPredictsTheFirstAdvance) {
+  const auto& bc = GetParam();
+  const Scene s = make_scene(bc, 7);
+  auto asked = bc.make();
+  asked->initialize(s.model, s.state, s.conc);
+  const SubstepBound bound = asked->current_substep_bound();
+  ASSERT_GT(bound.dt, 0.0);
+  EXPECT_LE(bound.dt, bound.limit) << "no max_time_step: the limit itself";
+  const StepReport rep = asked->advance(0, bc.time_step);
+  const double predicted = std::isfinite(bound.dt)
+                               ? std::max(1.0, std::ceil(bc.time_step / bound.dt * (1.0 - 1e-12)))
+                               : 1.0;
+  // exact for the uniform rule (tdpd); the adaptive one re-reads the limits every sub-step
+  EXPECT_NEAR(static_cast<double>(rep.substeps), predicted, 1.0)
+      << bc.name << ": bound " << bound.dt << " (" << bound.criterion << ")";
+  auto plain = run(bc, 7, 1);  // never asked
+  expect_identical(*asked, *plain);
+}
 
 TEST_P(BackendGenericTest, MomentumConservedWithNoise) {
   const auto& bc = GetParam();

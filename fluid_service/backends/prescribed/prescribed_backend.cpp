@@ -206,6 +206,19 @@ void PrescribedBackend::move(double dt) {
   }
 }
 
+SubstepBound PrescribedBackend::current_substep_bound() {
+  require_initialized("current_substep_bound");
+  if (species_.active()) {
+    return substep_bound(species_.limits(c_, state_), model_.max_time_step, model_.force_time_step);
+  }
+  SubstepBound b;
+  if (rk4_ && model_.max_time_step > 0) {
+    b.dt = model_.max_time_step;
+    b.criterion = "max_time_step";
+  }
+  return b;
+}
+
 StepReport PrescribedBackend::step(std::uint64_t step_index, double time_step) {
   step_ = step_index;
   StepReport rep;

@@ -53,6 +53,10 @@ class PrescribedBackend final : public BackendBase {
   [[nodiscard]] Capabilities capabilities() const override { return {true, true, false, true}; }
   [[nodiscard]] double time() const override { return time_; }
   [[nodiscard]] const PrescribedField& field() const { return field_; }
+  /// The species operator's limits (diffusion, reaction) at the current positions under
+  /// max_time_step / force_time_step, or, without transported species, RK4's moves of at most
+  /// max_time_step (the exact map: one piece).
+  [[nodiscard]] SubstepBound current_substep_bound() override;
 
  protected:
   void setup(const FluidModel& model, const ParticleState& initial,

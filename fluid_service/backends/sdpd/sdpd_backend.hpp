@@ -57,8 +57,13 @@ class SdpdBackend final : public BackendBase {
   void evaluate_current(std::uint64_t noise_step, Rates& out);
   /// Heap bytes held by the backend (state, scratch, neighbour list), for the benchmark.
   [[nodiscard]] std::size_t memory_bytes() const;
-  /// Stability limits at the current state (evaluates the rates once).
+  /// Stability limits at the current state (evaluates the rates once, on a copy of the state
+  /// into scratch rates: the trajectory is left as it is).
   [[nodiscard]] StabilityLimits current_limits();
+  /// current_limits() under max_time_step / force_time_step (the rule of every sub-step).
+  [[nodiscard]] SubstepBound current_substep_bound() override {
+    return substep_bound(current_limits(), model_.max_time_step, model_.force_time_step);
+  }
   /// Neighbour-list builds since initialize() (benchmark diagnostics).
   [[nodiscard]] std::uint64_t list_builds() const { return list_builds_; }
 

@@ -61,8 +61,12 @@ StabilityLimits SdpdBackend::limits_from(double vmax2, double rho_min, double am
 
 StabilityLimits SdpdBackend::current_limits() {
   require_initialized("current_limits");
-  evaluate(y_, 0, r0_, false);
-  return limits(y_, r0_);
+  // On copies: evaluate() writes the summation densities into its Y, and r0_ is the step's.
+  Y y = y_;
+  Rates r;
+  species_.set_time(time_);  // the laws of t (as a sub-step starting now)
+  evaluate(y, 0, r, false);
+  return limits(y, r);
 }
 
 void SdpdBackend::check_health(std::uint64_t step_index, std::uint32_t substep) const {

@@ -20,6 +20,12 @@ class StaticBackend final : public BackendBase {
   [[nodiscard]] double time() const override { return time_; }
   /// Stability limits at the current concentrations.
   [[nodiscard]] StabilityLimits current_limits() const;
+  /// current_limits() (diffusion, reaction) under max_time_step / force_time_step; no limit
+  /// without transported species (one sub-step per advance).
+  [[nodiscard]] SubstepBound current_substep_bound() override {
+    if (!species_.active()) return {};
+    return substep_bound(current_limits(), model_.max_time_step, model_.force_time_step);
+  }
 
  protected:
   void setup(const FluidModel& model, const ParticleState& initial,

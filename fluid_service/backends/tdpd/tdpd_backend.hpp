@@ -77,6 +77,11 @@ class TdpdBackend final : public BackendBase {
 
   /// Stability limits at the current state [time] (acoustic, viscous, body_force, diffusion).
   [[nodiscard]] StabilityLimits current_limits() const;
+  /// current_limits() under max_time_step / force_time_step (uniform_substeps' rule; tDPD's
+  /// limits have no reaction term).
+  [[nodiscard]] SubstepBound current_substep_bound() override {
+    return substep_bound(current_limits(), model_.max_time_step, model_.force_time_step);
+  }
   /// Pair forces (3N, [force]) and fluxes ([species][N], [C/time]) at the current state with
   /// the noise of (noise_step, dt) (testing aid; velocities as stored). With effective walls
   /// the fluxes include the wall terms, the Dirichlet one as the instantaneous rate

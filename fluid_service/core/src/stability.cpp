@@ -51,20 +51,31 @@ bool warn_unbinding_cap(const StabilityLimits& limits, double max_time_step) {
   return true;
 }
 
+SubstepBound substep_bound(const StabilityLimits& limits, double max_time_step, bool force) {
+  SubstepBound b;
+  std::tie(b.limit, b.limit_name) = limits.smallest();
+  b.dt = b.limit;
+  b.criterion = b.limit_name;
+  if (max_time_step > 0 && (force || max_time_step < b.limit)) {
+    b.dt = max_time_step;
+    b.criterion = "max_time_step";
+  }
+  return b;
+}
+
 Substep next_substep(const StabilityLimits& limits, double max_time_step, bool force,
                      double remaining, double& stable_dt, std::string& criterion) {
-  Substep out;
-  std::tie(out.limit, out.limit_name) = limits.smallest();
+  const SubstepBound bound = substep_bound(limits, max_time_step, force);
+  Substep out{0.0, bound.limit, bound.limit_name};
   if (out.limit < stable_dt) {
     stable_dt = out.limit;
     criterion = out.limit_name;
   }
-  double allowed = out.limit;
   if (max_time_step > 0) {
     if (force) warn_forced_substep(limits, std::min(max_time_step, remaining));
     if (!force) warn_unbinding_cap(limits, std::min(max_time_step, remaining));
-    allowed = force ? max_time_step : std::min(out.limit, max_time_step);
   }
+  const double allowed = bound.dt;
   const double n = std::ceil(remaining / allowed * (1.0 - 1e-12));
   out.dt = (std::isfinite(n) && n > 1) ? remaining / n : remaining;
   return out;
@@ -72,14 +83,15 @@ Substep next_substep(const StabilityLimits& limits, double max_time_step, bool f
 
 UniformSubsteps uniform_substeps(const StabilityLimits& limits, double max_time_step, bool force,
                                  double time_step) {
+  const SubstepBound bound = substep_bound(limits, max_time_step, force);
   UniformSubsteps out;
-  std::tie(out.limit, out.limit_name) = limits.smallest();
-  double dt_max = out.limit;
+  out.limit = bound.limit;
+  out.limit_name = bound.limit_name;
   if (max_time_step > 0.0) {
     if (force) warn_forced_substep(limits, max_time_step);
     if (!force) warn_unbinding_cap(limits, max_time_step);
-    dt_max = force ? max_time_step : std::min(out.limit, max_time_step);
   }
+  const double dt_max = bound.dt;
   out.count =
       static_cast<std::uint32_t>(std::max(1.0, std::ceil(time_step / dt_max * (1.0 - 1e-12))));
   out.dt = time_step / out.count;

@@ -87,7 +87,7 @@ void FluidServiceHandler::handle_typed(const v1::FluidRequest& request, v1::Flui
   }
 }
 
-void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& /*rep: status only*/) {
+void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
   const ParticleState particles = wire::from_proto(req.particles(), "init.particles");
   FluidModel model = model_from_proto(req.model(), particles.size());
   auto backend = registry_.create(req.model().backend());
@@ -126,6 +126,11 @@ void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& /*rep:
   have_last_ = false;
   inflows_ = std::move(inflows);
   apply_inflows();
+  // The sub-steps ahead at the initial state (with the inflow buffers' values), for the plan.
+  const SubstepBound bound = backend_->current_substep_bound();
+  rep.set_stable_time_step(bound.limit);
+  rep.set_limiting_criterion(bound.limit_name);
+  rep.set_max_substep(bound.dt);
   log::info("initialised backend '", backend_->name(), "' with ", n_particles_, " particles, ",
             model_.species.size(), " species");
 }

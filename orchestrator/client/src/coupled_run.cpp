@@ -123,7 +123,13 @@ class CoupledRun {
   void init_services() {
     ScopedTimer timer(manifest_.timings_s, "init");
     if (fluid_) {
-      (void)fluid_->init(make_fluid_init(scene_, plan_, seed_));
+      const FluidSubsteps f = fluid_substeps(fluid_->init(make_fluid_init(scene_, plan_, seed_)));
+      if (f.known()) {  // the backend's sub-steps ahead at t = 0 (the plan printed the same)
+        manifest_.fluid_at_t0 = {{"stable_time_step", f.stable_time_step},
+                                 {"limiting_criterion", f.limiting_criterion},
+                                 {"max_substep", f.max_substep},
+                                 {"substep_criterion", f.criterion()}};
+      }
     }
     if (ssa_) ssa_->init(make_ssa_init(scene_, plan_, seed_, scene_.particles));
   }

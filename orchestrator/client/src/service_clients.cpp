@@ -60,6 +60,10 @@ void GeometryChannel::release() {
   if (shm_) shm_->unlink();
 }
 
+FluidSubsteps fluid_substeps(const fluid::v1::InitReply& reply) {
+  return {reply.stable_time_step(), reply.limiting_criterion(), reply.max_substep()};
+}
+
 fluid::v1::InitReply FluidClient::init(const fluid::v1::InitRequest& request) {
   fluid::v1::FluidRequest r;
   *r.mutable_init() = request;

@@ -39,6 +39,7 @@ nlohmann::json RunManifest::to_json() const {
           {"steps", steps},
           {"overlapped_steps", overlapped_steps},
           {"fluid_substeps", fluid_substeps},
+          {"fluid_at_t0", fluid_at_t0},
           {"ssa_events", ssa_events},
           {"time", time},
           {"timings_s", timings_s},

@@ -46,39 +46,6 @@ std::string num(double v) {
   return buf;
 }
 
-/// Fluid sub-step from the same stability limits the backends apply
-/// (fluid_service/backends/*: Morris' coefficients with h_M = h/2), at t = 0.
-std::pair<double, std::string> fluid_substep(const Scene& s) {
-  const FluidSettings& f = s.fluid;
-  const double hm = 0.5 * f.smoothing_length;
-  std::pair<double, std::string> best{kInf, "none"};
-  auto consider = [&](double dt, const char* name) {
-    if (dt > 0 && dt < best.first) best = {dt, name};
-  };
-  if (moves_particles(f.backend)) {
-    double vmax = 0;
-    const auto& v = s.particles.velocities;
-    for (std::size_t i = 0; i + 2 < v.size(); i += 3) {
-      vmax = std::max(vmax, std::sqrt(v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]));
-    }
-    if (f.sound_speed > 0) consider(0.25 * hm / (f.sound_speed + vmax), "acoustic");
-    if (f.shear_viscosity > 0) {
-      consider(0.125 * f.reference_density * hm * hm / f.shear_viscosity, "viscous");
-    }
-    const double g = std::hypot(f.gravity[0], f.gravity[1], f.gravity[2]);
-    if (g > 0) consider(0.25 * std::sqrt(hm / g), "body_force");
-  }
-  double kmax = 0;
-  for (const auto& sp : s.species) {
-    if (!sp.stochastic) kmax = std::max(kmax, sp.diffusivity);
-  }
-  if (kmax > 0) consider(0.125 * hm * hm / kmax, "diffusion");
-  if (f.max_time_step > 0 && (f.force_time_step || f.max_time_step < best.first)) {
-    best = {f.max_time_step, "max_time_step"};
-  }
-  return best;
-}
-
 /// Bytes of one frame per particle and format, measured on the writers'
 /// output at 1e4 particles with 1 and 4 species (2D, thermal noise: full
 /// precision everywhere): csv 119 + 5/species, binary vtu 90 + 8/species,
@@ -199,8 +166,12 @@ MachineLimits machine_limits(const std::filesystem::path& output) {
   return m;
 }
 
+std::string FluidSubsteps::criterion() const {
+  return max_substep == stable_time_step ? limiting_criterion : std::string("max_time_step");
+}
+
 WorkEstimate estimate_work(const Scene& s, const Plan& plan, const MachineLimits& machine,
-                           int realizations, int jobs) {
+                           int realizations, int jobs, const FluidSubsteps* fluid) {
   WorkEstimate e;
   const double r = std::max(1, realizations), j = std::max(1, jobs);
   const int d = s.box.dimension;
@@ -211,11 +182,18 @@ WorkEstimate estimate_work(const Scene& s, const Plan& plan, const MachineLimits
   const double tau = s.time.coupling_step;
   e.coupling_steps =
       std::ceil(s.time.end / tau * (1.0 - 1e-12)) + static_cast<double>(s.output.times.size());
-  if (plan.fluid_stepping) {
-    const auto [dt, limit] = fluid_substep(s);
-    const double calls = std::max(1, plan.fluid_calls_per_step);
-    e.substeps_per_step = std::isfinite(dt) ? calls * std::ceil(tau / calls / dt) : calls;
-    e.substep_limit = limit;
+  if (plan.fluid_stepping && fluid && fluid->known()) {
+    // Each call of tau / calls takes ceil(length / max_substep) sub-steps (the backends' rules,
+    // fluid_service/core stability.hpp), from the limits at t = 0.
+    const double calls = std::max(1, plan.fluid_calls_per_step), dt = fluid->max_substep;
+    e.substeps_per_step = std::isfinite(dt)
+                              ? calls * std::max(1.0, std::ceil(tau / calls / dt * (1.0 - 1e-12)))
+                              : calls;
+    e.substep_limit = fluid->criterion();
+    e.stable_time_step = fluid->stable_time_step;
+    e.limiting_criterion = fluid->limiting_criterion;
+  } else if (plan.fluid_stepping) {
+    e.substeps_unknown = true;
   }
   e.frames = static_cast<double>(s.output.times.size());
   e.output_bytes = e.frames * frame_bytes(s, e.particles) * r;
@@ -275,11 +253,16 @@ std::vector<std::string> WorkEstimate::lines() const {
   out.push_back("estimate: " + num(particles) + " particles, peak memory " +
                 bytes_text(memory_bytes()) + " (sadr " + bytes_text(sadr_bytes) + ", fluid " +
                 bytes_text(fluid_bytes) + ", ssa " + bytes_text(ssa_bytes) + ")");
-  out.push_back("estimate: " + num(coupling_steps) + " coupling steps" +
-                (substeps_per_step > 0 ? ", ~" + num(substeps_per_step) +
-                                             " fluid sub-step(s) each (" + substep_limit + ")"
-                                       : std::string()) +
-                "; " + num(frames) + " frame(s), " + bytes_text(output_bytes) + " of output");
+  std::string fluid;
+  if (substeps_per_step > 0) {
+    fluid = ", ~" + num(substeps_per_step) + " fluid sub-step(s) each (" + substep_limit +
+            "; the backend at t = 0: stable time step " + num(stable_time_step) + ", " +
+            limiting_criterion + ")";
+  } else if (substeps_unknown) {
+    fluid = ", fluid sub-steps not known (the backend did not report its limits)";
+  }
+  out.push_back("estimate: " + num(coupling_steps) + " coupling steps" + fluid + "; " +
+                num(frames) + " frame(s), " + bytes_text(output_bytes) + " of output");
   if (event_rate > 0 || molecules > 0) {
     out.push_back("estimate: " + num(molecules) + " molecules, ~" + num(event_rate) +
                   " SSA events per unit time at t = 0, ~" + num(events) + " events in all");
@@ -295,6 +278,8 @@ nlohmann::json WorkEstimate::to_json() const {
           {"coupling_steps", coupling_steps},
           {"substeps_per_step", substeps_per_step},
           {"substep_limit", substep_limit},
+          {"stable_time_step", stable_time_step},
+          {"limiting_criterion", limiting_criterion},
           {"frames", frames},
           {"output_bytes", output_bytes},
           {"molecules", molecules},

@@ -12,6 +12,7 @@
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/fluid/fluid_model.hpp"
+#include "sadr/fluid/stability.hpp"
 
 namespace sadr::fluid {
 
@@ -70,6 +71,11 @@ class FluidBackend {
   virtual void restore(std::string_view blob) = 0;
   /// Model time [time].
   [[nodiscard]] virtual double time() const = 0;
+  /// The sub-steps ahead from the current state, by the backend's own rule: its stability
+  /// limits there (every criterion that rule applies, reactions included where it applies
+  /// them) and the cap of max_time_step / force_time_step (substep_bound()). The fluid service
+  /// reports it after initialize() (InitReply), for the plan. Leaves the trajectory as it is.
+  [[nodiscard]] virtual SubstepBound current_substep_bound() = 0;
 };
 
 }  // namespace sadr::fluid

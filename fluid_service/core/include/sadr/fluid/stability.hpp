@@ -55,6 +55,17 @@ bool warn_forced_substep(const StabilityLimits& limits, double dt);
 /// does nothing there; the message names the limit and its value); returns whether it warned.
 bool warn_unbinding_cap(const StabilityLimits& limits, double max_time_step);
 
+/// The longest sub-step either rule below takes at `limits`, and what sets it.
+struct SubstepBound {
+  double limit = StabilityLimits::kNone;  ///< the binding stability limit [time] (inf: none)
+  std::string limit_name = "none";        ///< its name (StabilityLimits::smallest())
+  double dt = StabilityLimits::kNone;     ///< the longest sub-step [time] (inf: one per advance)
+  std::string criterion = "none";         ///< what sets dt: limit_name or "max_time_step"
+};
+/// The binding limit, capped by `max_time_step` when that is > 0 and smaller; with `force`,
+/// max_time_step itself. An advance of length T then takes ceil(T / dt) sub-steps. No warnings.
+SubstepBound substep_bound(const StabilityLimits& limits, double max_time_step, bool force);
+
 /// One sub-step chosen by next_substep().
 struct Substep {
   double dt = 0.0;         ///< sub-step length [time]

@@ -14,6 +14,7 @@
 #include "sadr/common/version.hpp"
 #include "sadr/fluid/v1/fluid_service.pb.h"
 #include "sadr/orchestrator/service_interfaces.hpp"
+#include "sadr/orchestrator/work_estimate.hpp"
 #include "sadr/ssa/v1/ssa_service.pb.h"
 #include "sadr/wire/convert.hpp"
 #include "sadr/wire/rpc.hpp"
@@ -41,6 +42,10 @@ class GeometryChannel {
  private:
   std::optional<wire::SharedGeometry> shm_;
 };
+
+/// What the fluid backend reported after init: its sub-steps ahead at t = 0 (InitReply fields
+/// 3-5; all zero from a service before them).
+FluidSubsteps fluid_substeps(const fluid::v1::InitReply& reply);
 
 /// The message's bytes with map entries in key order (protobuf's default order
 /// of map fields varies between runs).

@@ -38,6 +38,10 @@ struct RunManifest {
   /// Fluid sub-steps taken by this invocation (a resumed run counts from the resume):
   /// with `timings_s` and the steps done here, how many sub-steps a coupling step costs.
   std::uint64_t fluid_substeps = 0;
+  /// What the fluid backend reported after init (InitReply; {} if nothing): stable_time_step
+  /// and limiting_criterion (its binding stability limit at t = 0), max_substep (the longest
+  /// sub-step it takes from there; null: one per call) and substep_criterion (what sets it).
+  nlohmann::json fluid_at_t0 = nlohmann::json::object();
   /// SSA events (reactions + diffusion jumps) of this invocation, as fluid_substeps.
   std::uint64_t ssa_events = 0;
   double time = 0.0;  ///< simulated time reached [time]

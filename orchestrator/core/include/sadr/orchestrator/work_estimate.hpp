@@ -2,7 +2,8 @@
 /// \file work_estimate.hpp
 /// What a scene will cost before it runs: particles, memory per process (from
 /// measured bytes per particle, bench/memory_per_particle.py), coupling steps
-/// and fluid sub-steps, frames and output bytes, molecules and SSA events.
+/// and fluid sub-steps (from the fluid backend's own limits at t = 0, which the
+/// orchestrator does not re-derive), frames and output bytes, molecules and SSA events.
 /// `sadr validate` and the plan print it; limits refuse a run that cannot
 /// finish on this machine (hard: memory above the machine's, output above
 /// the free disk, counts or steps beyond the exact integer range) or that
@@ -44,12 +45,27 @@ MemoryModel orchestrator_memory(const std::string& backend);
 /// Whether the fluid backend moves particles (its schema capability; true for an unknown name).
 bool moves_particles(const std::string& backend);
 
+/// What the fluid backend reports after init (sadr.fluid.v1.InitReply; FluidBackend::
+/// current_substep_bound): its stability limits at t = 0 by its own rule, reactions included.
+struct FluidSubsteps {
+  double stable_time_step = 0;     ///< the binding stability limit [time] (inf: none)
+  std::string limiting_criterion;  ///< its name ("acoustic" ... "reaction", "none")
+  double max_substep = 0;          ///< the longest sub-step the backend takes [time] (inf: one)
+  /// Whether a service reported it (one before these fields leaves zeros).
+  [[nodiscard]] bool known() const { return max_substep > 0 && !limiting_criterion.empty(); }
+  /// What sets max_substep: limiting_criterion, or "max_time_step" when the cap binds.
+  [[nodiscard]] std::string criterion() const;
+};
+
 struct WorkEstimate {
   double particles = 0;
   double sadr_bytes = 0, fluid_bytes = 0, ssa_bytes = 0;  ///< peak RSS per process
   double coupling_steps = 0;
-  double substeps_per_step = 0;  ///< fluid sub-steps per coupling step (0: no fluid stepping)
-  std::string substep_limit;     ///< the stability limit that sets them
+  double substeps_per_step = 0;    ///< fluid sub-steps per coupling step (0: none or not known)
+  std::string substep_limit;       ///< what sets them (FluidSubsteps::criterion(); "" not known)
+  double stable_time_step = 0;     ///< the backend's binding stability limit at t = 0 [time]
+  std::string limiting_criterion;  ///< its name
+  bool substeps_unknown = false;   ///< the plan steps the fluid, but no backend figure was given
   double frames = 0, output_bytes = 0;
   double molecules = 0;           ///< stochastic copy numbers at t = 0, all species
   double event_rate = 0;          ///< SSA events per unit time at t = 0 (diffusion + reactions)
@@ -64,9 +80,11 @@ struct WorkEstimate {
 
 /// The estimate of `scene` under `plan`, with the limits of `machine` checked,
 /// for `realizations` runs of which `jobs` run at once (memory x jobs, the
-/// rest x realizations).
+/// rest x realizations). The fluid sub-steps per coupling step come from `fluid`, the
+/// backend's report at t = 0 (without it they are not estimated, and said so).
 WorkEstimate estimate_work(const Scene& scene, const Plan& plan, const MachineLimits& machine,
-                           int realizations = 1, int jobs = 1);
+                           int realizations = 1, int jobs = 1,
+                           const FluidSubsteps* fluid = nullptr);
 
 /// Throws InvalidArgument with the estimate when a hard limit is exceeded, or
 /// a soft one without `allow_large`.
