@@ -8,11 +8,11 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config          # toolchain (g++ 12, CMake 3.25)
   libzmq3-dev cppzmq-dev                    # transport between the three processes
-  libprotobuf-dev protobuf-compiler         # wire protocol v1 (proto/)
+  libprotobuf-dev protobuf-compiler         # wire messages (proto/, sadr.*.v1; framing protocol v2)
   libeigen3-dev                             # small dense/sparse linear algebra
-  libboost-graph-dev                        # diffusion graph (compressed_sparse_row_graph)
+  libboost-graph-dev                        # graph diagnostics (connected_components), Boost.Math, the CSR comparison bench
   libgtest-dev libgmock-dev                 # tests
-  libbenchmark-dev                          # micro benchmarks
+  libbenchmark-dev                          # found by CMake, not used yet (README "Dependencies")
   libcli11-dev                              # command-line parsing
   libyaml-cpp-dev                           # scene files
   libmuparser-dev                           # expression rate laws (common/rate_law.hpp)
