@@ -76,9 +76,13 @@ def run_cell(bin_dir, work, name, text, extra=()):
     r = run_measured([bin_dir / "sadr", "run", d / "scene.yaml", "-q", "--force", "-o", d / "out",
                       *extra], log=log)
     msg = ""
-    for line in log.read_text(errors="replace").splitlines():
+    lines = log.read_text(errors="replace").splitlines()
+    for i, line in enumerate(lines):
         if "error" in line.lower() or "failure" in line.lower() or "refus" in line.lower():
             msg = line.strip()
+            # a heading ("...: 1 problem", "...work estimate:"): the reason is the next line
+            if (msg.endswith(":") or re.search(r"\d+ problems?$", msg)) and i + 1 < len(lines):
+                msg += " " + lines[i + 1].strip()
             break
     rows, nframes = read_frames(d / "out")
     manifest = {}
