@@ -229,10 +229,10 @@ seed: 1
 
 def copy_number_cells(bin_dir, work):
     cells = []
-    for count in ("0", "1", "1000000", "1000000000000", "9007199254740992",
+    for count in ("0", "1", "1000000", "1000000000000", "2251799813685248", "9007199254740992",
                   "9007199254740993", "1e18", "1e19", "1e300"):
         c = run_cell(bin_dir, work, f"count {count}", STATIC_SSA.format(count=count))
-        c["axis"] = "stochastic copy number per particle (4 particles)"
+        c["axis"] = "stochastic copy number per particle (4 particles; 2^51 each = 2^53 in all)"
         c["value"] = count
         if c["outcome"] == "runs" and c["rows"]:
             got = [r["A"] for r in c["rows"]]
