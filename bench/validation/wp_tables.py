@@ -194,7 +194,7 @@ def render(d, plots, cmd, rev, started, elapsed, build, quick, paper_sdpd, paper
         g = d["gtests"].get(gid)
         if not g:
             w(f"| {gid} | {ref} | {paper} | not run (`--full` only) | - | "
-              f"`build/tests/{binary} --gtest_filter='{flt}'` |")
+              f"`build/{build.name}/tests/{binary} --gtest_filter='{flt}'` |")
             continue
         state = f"{len(g['passed'])} / {len(g['failed'])} / {len(g['skipped'])}"
         if g["rc"] and not g["failed"]:

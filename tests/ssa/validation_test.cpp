@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Long ensembles (label validation, opt-in): the property tests with 10-20x more
 // realizations, and an independent cross-check of our graph dump against
-// ../shared/refs/rdme_linear_mean.py (python3 + scipy; skipped if unavailable).
+// tests/ssa/linear_rdme_reference.py (python3 + scipy, which deploy/install-deps.sh installs).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,15 +27,13 @@ Model irregular_model() {
   return m;
 }
 
-// The exact mean of refs/rdme_linear_mean.py (scipy expm_multiply) on OUR dumped graph
-// equals the Eigen expm solution used by the property tests (relative 1e-9): validates
-// the JSON dump and the C++ exact solution independently. Deterministic.
-TEST(Validation, DumpedGraphMatchesRefsScript) {
-  const char* refs_dir = "/work/shared/refs";
-  if (std::system("/usr/bin/python3 -c 'import scipy' > /dev/null 2>&1") != 0 ||
-      !std::ifstream(std::string(refs_dir) + "/rdme_linear_mean.py")) {
-    GTEST_SKIP() << "python3 with scipy or ../shared/refs not available";
-  }
+// The exact mean and variance of tests/ssa/linear_rdme_reference.py (scipy expm_multiply, an
+// implementation independent of linear_exact.hpp) on OUR dumped graph equal the Eigen expm
+// solution used by the property tests (relative 1e-9): validates the JSON dump and the C++
+// exact solution against each other. Deterministic.
+TEST(Validation, DumpedGraphMatchesScipyReference) {
+  ASSERT_EQ(std::system("/usr/bin/python3 -c 'import scipy' > /dev/null 2>&1"), 0)
+      << "needs /usr/bin/python3 with scipy (deploy/install-deps.sh installs python3-scipy)";
   NsmSolver s(irregular_model(), 1);
   const ParticleState p = testing::make_lattice(2, 5, 1.0, 0.3, 0.3, 11);
   s.update_graph(p);
@@ -50,9 +48,8 @@ TEST(Validation, DumpedGraphMatchesRefsScript) {
   const std::string dir = SADR_BINARY_DIR;
   const std::string json = dir + "/ssa_irregular25.json", csv = dir + "/ssa_irregular25_mean.csv";
   std::ofstream(json) << graph_to_json(s.graph(), spec);
-  const std::string cmd = "cd " + std::string(refs_dir) +
-                          " && /usr/bin/python3 rdme_linear_mean.py " + json + " --out " + csv +
-                          " > /dev/null";
+  const std::string cmd = std::string("/usr/bin/python3 ") + SADR_SOURCE_DIR +
+                          "/tests/ssa/linear_rdme_reference.py " + json + " --out " + csv;
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   std::vector<double> b(spec.birth), x0(25, 0.0);
   x0[12] = 200;

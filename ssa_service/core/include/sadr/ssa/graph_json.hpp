@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file graph_json.hpp
 /// Dumps the jump rates of a diffusion graph as the explicit-graph JSON that
-/// ../shared/refs/rdme_linear_mean.py reads ("n_voxels", "edges": [[i, j, d_ij]],
+/// tests/ssa/linear_rdme_reference.py reads ("n_voxels", "edges": [[i, j, d_ij]],
 /// plus the first-order network and output times), so the exact mean and
 /// variance of a first-order RDME can be computed for OUR rates.
 #pragma once
