@@ -432,9 +432,23 @@ int cmd_run(const CliOptions& o) {
 int cmd_resume(const CliOptions& o) {
   install_signal_handlers();
   if (fs::exists(fs::path(o.checkpoint) / "ensemble.json")) return resume_ensemble(o, o.checkpoint);
-  LoadedCheckpoint cp = load_checkpoint(o.checkpoint, "");
+  // A directory: the checkpoint directory itself, or a run's folder holding checkpoint/.
   fs::path manifest_path = o.checkpoint;
-  if (fs::is_directory(manifest_path)) manifest_path /= std::string(kCheckpointManifestName);
+  if (fs::is_directory(manifest_path)) {
+    const fs::path here = manifest_path / std::string(kCheckpointManifestName);
+    const fs::path in_run = manifest_path / "checkpoint" / std::string(kCheckpointManifestName);
+    if (fs::exists(here)) {
+      manifest_path = here;
+    } else if (fs::exists(in_run)) {
+      manifest_path = in_run;
+    } else {
+      throw InvalidArgument("'" + o.checkpoint + "' holds neither " + here.string() + " nor " +
+                            in_run.string() +
+                            " (pass a run's folder, its checkpoint directory or its "
+                            "checkpoint.json; a run that wrote no checkpoint cannot be resumed)");
+    }
+  }
+  LoadedCheckpoint cp = load_checkpoint(manifest_path, "");
   const fs::path run_dir = manifest_path.parent_path().parent_path();
   // The overrides of the run (run.json) make the same effective scene again.
   const Scene scene =

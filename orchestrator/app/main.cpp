@@ -156,9 +156,11 @@ int main(int argc, char** argv) {
   auto* resume =
       app.add_subcommand("resume", "continue a run from its checkpoint, bit-identically");
   resume
-      ->add_option("checkpoint", o.checkpoint,
-                   "checkpoint.json, the checkpoint directory, or an ensemble folder (sadr "
-                   "run -r: runs the realizations that did not finish)")
+      ->add_option(
+          "checkpoint", o.checkpoint,
+          "a run's folder (uses its checkpoint/checkpoint.json), the checkpoint directory, "
+          "checkpoint.json, or an ensemble folder (sadr run -r: runs the realizations that did "
+          "not finish)")
       ->required()
       ->check(CLI::ExistingPath);
   add_service_options(resume);

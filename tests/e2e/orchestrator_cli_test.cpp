@@ -182,6 +182,30 @@ TEST(OrchestratorCli, RunHalfThenResumeEqualsFullRun) {
   if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
 }
 
+// `sadr resume RUN_DIR` (the run's folder, as `sadr run -o` names it) finds
+// RUN_DIR/checkpoint/checkpoint.json; a folder with no checkpoint is refused, naming the
+// paths it looked for.
+TEST(OrchestratorCli, ResumeOfARunFolderUsesItsCheckpointDirectory) {
+  const fs::path d = scratch("resume_run_dir");
+  const fs::path scene = write_scene(d, annihilation_scene(0.4, "[0.2, 0.4]", 0.1));
+  const std::string sadr = bin("sadr") + " ";
+  ASSERT_EQ(run(sadr + "run " + scene.string() + " -q -o " + (d / "full").string(), d / "a.log"), 0)
+      << read_file(d / "a.log");
+  ASSERT_EQ(run(sadr + "run " + scene.string() + " -q --stop-at 0.2 -o " + (d / "half").string(),
+                d / "b.log"),
+            0)
+      << read_file(d / "b.log");
+  ASSERT_EQ(run(sadr + "resume " + (d / "half").string() + " -q", d / "c.log"), 0)
+      << read_file(d / "c.log");
+  expect_same_frames(d / "full", d / "half");
+  fs::create_directories(d / "none");
+  EXPECT_EQ(run(sadr + "resume " + (d / "none").string() + " -q", d / "e.log"), 1);
+  const std::string e = read_file(d / "e.log");
+  EXPECT_NE(e.find((d / "none" / "checkpoint" / "checkpoint.json").string()), std::string::npos)
+      << e;
+  if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
+}
+
 TEST(OrchestratorCli, TwoRunsOfOneSceneWriteByteIdenticalCheckpoints) {
   const fs::path d = scratch("ckpt_bytes");
   std::string text = moving_scene();  // both services, each blob with a metadata map
