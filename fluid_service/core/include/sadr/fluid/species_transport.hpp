@@ -91,7 +91,7 @@ class SpeciesTransport {
   void update_sites(std::span<const ParticleKind> kinds);
   [[nodiscard]] double two_kappa(int s) const { return two_kappa_[s]; }
   /// The time t the rate laws see in the next add_reactions / reaction_rate_scale calls
-  /// (the integrator sets it per stage: docs/method.md section 4b).
+  /// (the integrator sets it per stage: docs/method.md section 4c).
   void set_time(double t) { time_ = t; }
   [[nodiscard]] double time() const { return time_; }
 

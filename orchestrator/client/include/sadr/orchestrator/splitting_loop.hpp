@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file splitting_loop.hpp
-/// The Lie/Strang coupling loop (docs/method.md, "Operator splitting") over
+/// The Lie/Strang coupling loop (docs/method.md section 1) over
 /// the service interfaces: steps shortened to land on output times and the
 /// end (next_coupling_step), the geometry handed from each fluid stage to the
 /// SSA stage after it, the back-transfer of copy numbers, and the overlap of
