@@ -9,7 +9,7 @@ endfunction()
 
 # sadr_add_gtest(NAME name SOURCES a.cpp ... LIBS lib ... LABELS unit ... [TIMEOUT s])
 # One GoogleTest executable; every TEST in it becomes a ctest test with LABELS.
-# Tests run with the source tree's tests/data and ../shared/refs reachable via
+# Tests run with the source tree's tests/data and tests/data/refs reachable via
 # the environment variables SADR_TEST_DATA and SADR_REFS.
 function(sadr_add_gtest)
   cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 /// \file reference_solutions.hpp
-/// C++ ports of the closed-form references in ../shared/refs (README sections 1-3, 5) and
-/// the deterministic error norms of section 8. Checked against the CSV spot values in
+/// Closed-form references: case 1 (step, erf images), 2 (Dirichlet series), 3 (Neumann
+/// series), 5 (Poiseuille start-up), and the scaled error norms (scaled L2 = weighted RMS /
+/// scale, scaled Linf = max / scale). Checked against the CSV spot values in
 /// reference_solutions_test.cpp.
 #pragma once
 

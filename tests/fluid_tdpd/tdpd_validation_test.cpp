@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// Validation of the tDPD backend (ctest label "validation", minutes):
-///  - 1D step diffusion (refs case 1, li2015 sec. III A) with D = 0.05 and 0.5 in a periodic
+///  - 1D step diffusion (li2015 sec. III A) with D = 0.05 and 0.5 in a periodic
 ///    slab (two interfaces; the erf solution summed over periodic images), and the effective D
 ///    fitted to the particle concentrations against li2015's calibration D = 0.0187 + 0.771 kappa;
 ///  - D(kappa) by the reverse-Poiseuille method of li2015 sec. II A: a source +s in one half of a

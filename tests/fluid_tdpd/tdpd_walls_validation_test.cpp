@@ -1,17 +1,18 @@
 // SPDX-License-Identifier: MIT
 /// Validation of the effective walls (li2015 sec. II B, no frozen particles), ctest label
 /// "validation":
-///  - Dirichlet 1D diffusion (refs case 2, li2015 sec. III A) D = 3.87, C(0) = 0, C(L) = 1;
-///  - Neumann 1D diffusion (refs case 3) D = 3.87, inward flux D Lambda, Lambda = 0.01, C(L) = 0
-///    (refs sign convention: dC/dx(0) = -Lambda, C in [0, Lambda L]);
+///  - Dirichlet 1D diffusion (li2015 sec. III A) D = 3.87, C(0) = 0, C(L) = 1;
+///  - Neumann 1D diffusion, D = 3.87, inward flux D Lambda, Lambda = 0.01, C(L) = 0
+///    (sign convention: dC/dx(0) = -Lambda, C in [0, Lambda L]);
 ///  - Poiseuille flow between effective walls: no-slip (wall velocity of the fitted parabola),
 ///    viscosity vs li2015's nu = 6.62, density profile near the walls.
-/// The refs use L = 100; here L = 20.16 (32 lattice cells) with the same D, compared at the same
-/// Fourier numbers D t / L^2 (t_here = t_ref (L / 100)^2) with the series solutions of
-/// ../shared/refs/README.md cases 2 and 3 evaluated at the particle positions.
-/// Each test is one realisation with a fixed seed, so it is deterministic; the tolerances are
-/// about 2-3x the measured errors (docs/tdpd.md): a margin for a different realisation (other
-/// compiler / FP contraction changes the chaotic trajectories), not a statistical bound.
+/// The reference cases (tests/fluid/reference_solutions.hpp) use L = 100; here L = 20.16 (32
+/// lattice cells) with the same D, compared at the same Fourier numbers D t / L^2 (t_here = t_ref
+/// (L / 100)^2) with the series solutions of cases 2 and 3 (own copies below) evaluated at the
+/// particle positions. Each test is one realisation with a fixed seed, so it is deterministic; the
+/// tolerances are about 2-3x the measured errors (docs/tdpd.md): a margin for a different
+/// realisation (other compiler / FP contraction changes the chaotic trajectories), not a
+/// statistical bound.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -69,7 +70,7 @@ double kappa_of_d(double d) {
   return (d - 0.0187) / 0.771;
 }
 
-/// refs case 2 (Fourier form): C(0) = 0, C(L) = 1.
+/// Case 2 (Fourier form): C(0) = 0, C(L) = 1.
 double dirichlet_exact(double x, double t, double d, double l) {
   double c = x / l;
   for (int n = 1; n <= 4000; ++n) {
@@ -79,7 +80,7 @@ double dirichlet_exact(double x, double t, double d, double l) {
   }
   return c;
 }
-/// refs case 3 (Fourier form): -D C'(0) = D lambda, C(L) = 0.
+/// Case 3 (Fourier form): -D C'(0) = D lambda, C(L) = 0.
 double neumann_exact(double x, double t, double d, double l, double lambda) {
   double c = lambda * (l - x);
   for (int n = 1; n <= 4000; ++n) {
@@ -94,7 +95,7 @@ double neumann_exact(double x, double t, double d, double l, double lambda) {
 struct Errors {
   double scaled_l2 = 0, scaled_linf = 0, bin_max = 0;
 };
-/// Scaled norms (refs sec. 8, equal particle weights) and the max of 20 bin means of C - C_ref.
+/// Scaled norms (equal particle weights) and the max of 20 bin means of C - C_ref.
 Errors errors(const std::vector<double>& x, const std::vector<double>& c, double l, double scale,
               const std::function<double(double)>& ref) {
   const std::size_t n = c.size();

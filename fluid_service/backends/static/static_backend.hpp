@@ -4,7 +4,7 @@
 /// initial state. Costs nothing per step when there are no deterministic species. When
 /// there are, it integrates them on the frozen particles with exactly the SDPD species
 /// operator (docs/method.md eq (17) + mass-action reactions, trapezoidal predictor-corrector, the
-/// same wall conditions), so frozen-particle diffusion references (refs cases 1-4) can be
+/// same wall conditions), so frozen-particle diffusion references (tests/fluid/validation) can be
 /// run without a flow.
 #pragma once
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Validation: 1-D A + B -> 0 with opposing Dirichlet sources (drawert2019 sec. 4.1, refs case 4)
+// Validation: 1-D A + B -> 0 with opposing Dirichlet sources (drawert2019 sec. 4.1; reference
+// tests/data/refs/annihilation_1d_subset.csv)
 // on frozen particles with the deterministic SDPD species operator (static backend; the
 // SDPD backend at rest runs the identical operator, checked in AnnihilationSdpdAtRest).
 //

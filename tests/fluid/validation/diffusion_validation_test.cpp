@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Validation: deterministic diffusion on frozen particles (static backend) against the
-// closed forms of refs cases 1 (step / erf, no-flux walls), 2 (Dirichlet) and 3 (Neumann),
+// closed forms of cases 1 (step / erf, no-flux walls), 2 (Dirichlet) and 3 (Neumann) of
+// reference_solutions.hpp,
 // at three resolutions. The thresholds are the measured errors rounded up by ~30%, so a
 // regression of the operator, the walls or the integrator fails them.
 #include <gtest/gtest.h>

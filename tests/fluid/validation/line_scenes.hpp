@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 /// \file line_scenes.hpp
-/// 1-D particle lines for the frozen-particle diffusion validations (refs cases 1-4).
+/// 1-D particle lines for the frozen-particle diffusion validations (cases 1-3 of
+/// reference_solutions.hpp, A + B -> 0 against tests/data/refs/annihilation_1d_subset.csv).
 #pragma once
 
 #include <cstdio>

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Validation: Poiseuille start-up (Morris, Fox & Zhu 1997; refs case 5) with the SDPD backend,
+// Validation: Poiseuille start-up (Morris, Fox & Zhu 1997; poiseuille_exact
+// of reference_solutions.hpp) with the SDPD backend,
 // k_B T = 0, stationary wall particles, at three resolutions, with the observed order.
 #include <gtest/gtest.h>
 
