@@ -109,12 +109,19 @@ std::optional<FluidSubsteps> fluid_substeps_at_t0(const Scene& scene, const Plan
 }
 
 /// estimate_work() with the backend's sub-steps at t = 0 once the hard limits (memory, disk)
-/// allow initialising the backend here.
+/// allow initialising the backend here and that init fits (in_process_init_fits: otherwise the
+/// figure is not computed, and the plan says so).
 WorkEstimate estimate_with_backend(const Scene& scene, const Plan& plan, const fs::path& out,
                                    int realizations, int jobs) {
   const MachineLimits machine = machine_limits(out);
   WorkEstimate e = estimate_work(scene, plan, machine, realizations, jobs);
   if (!e.hard.empty()) return e;
+  if (!plan.fluid_service || !plan.fluid_stepping) return e;
+  const double need = in_process_init_bytes(e, jobs);
+  if (!in_process_init_fits(need, machine)) {
+    e.substeps_skipped = need;
+    return e;
+  }
   if (const auto fluid = fluid_substeps_at_t0(scene, plan)) {
     e = estimate_work(scene, plan, machine, realizations, jobs, &*fluid);
   }

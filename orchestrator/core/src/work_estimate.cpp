@@ -248,6 +248,14 @@ WorkEstimate estimate_work(const Scene& s, const Plan& plan, const MachineLimits
   return e;
 }
 
+double in_process_init_bytes(const WorkEstimate& e, int jobs) {
+  return (e.sadr_bytes + kInProcessInitFluidShare * e.fluid_bytes) / std::max(1, jobs);
+}
+
+bool in_process_init_fits(double bytes, const MachineLimits& machine) {
+  return bytes <= kSoftMemoryShare * machine.memory_bytes && bytes <= machine.process_bytes;
+}
+
 std::vector<std::string> WorkEstimate::lines() const {
   std::vector<std::string> out;
   out.push_back("estimate: " + num(particles) + " particles, peak memory " +
@@ -258,6 +266,11 @@ std::vector<std::string> WorkEstimate::lines() const {
     fluid = ", ~" + num(substeps_per_step) + " fluid sub-step(s) each (" + substep_limit +
             "; the backend at t = 0: stable time step " + num(stable_time_step) + ", " +
             limiting_criterion + ")";
+  } else if (substeps_skipped > 0) {
+    fluid =
+        ", fluid sub-steps not computed (initialising the backend in sadr for its t = 0 "
+        "figure would take ~" +
+        bytes_text(substeps_skipped) + ": above half the machine's memory or the process limit)";
   } else if (substeps_unknown) {
     fluid = ", fluid sub-steps not known (the backend did not report its limits)";
   }
