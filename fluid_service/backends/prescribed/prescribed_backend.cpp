@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "sadr/common/status.hpp"
@@ -279,6 +280,10 @@ void PrescribedBackend::restore_state(BlobReader& r, std::uint32_t version) {
     for (int a = model_.box.dimension; a < 3; ++a) state_.velocities[3 * i + a] = 0.0;
   }
   c_ = std::move(c);
+}
+
+void register_prescribed_backend(BackendRegistry& registry) {
+  registry.add("prescribed", [] { return std::make_unique<PrescribedBackend>(); });
 }
 
 }  // namespace sadr::fluid

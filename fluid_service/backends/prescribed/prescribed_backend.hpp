@@ -23,6 +23,7 @@
 
 #include "prescribed_grid.hpp"
 #include "sadr/fluid/backend_base.hpp"
+#include "sadr/fluid/backend_registry.hpp"
 #include "sadr/fluid/species_operator.hpp"
 
 namespace sadr::fluid {
@@ -83,5 +84,8 @@ class PrescribedBackend final : public BackendBase {
   double time_ = 0;
   std::uint64_t step_ = 0;  ///< the step being taken (for messages)
 };
+
+/// Registers "prescribed" (called by the generated register_builtin_backends(), backends.cmake).
+void register_prescribed_backend(BackendRegistry& registry);
 
 }  // namespace sadr::fluid

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "sadr/common/status.hpp"
@@ -177,6 +178,10 @@ std::size_t SdpdBackend::memory_bytes() const {
          vb(list_ref_x_) + vb(wall_) + morris_.bytes() + open_.bytes() + vb(mass_) + vb(kinds_) +
          vb(ids_) + vb(pd2_) + vb(inv_nd_) + vb(vol_) + vb(sqrt_inv_nd_) + noise_bytes +
          slabs_.bytes() + vb(hin_) + vb(hacc_);
+}
+
+void register_sdpd_backend(BackendRegistry& registry) {
+  registry.add("sdpd", [] { return std::make_unique<SdpdBackend>(); });
 }
 
 }  // namespace sadr::fluid

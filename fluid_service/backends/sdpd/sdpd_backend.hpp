@@ -25,6 +25,7 @@
 #include <memory>
 
 #include "sadr/fluid/backend_base.hpp"
+#include "sadr/fluid/backend_registry.hpp"
 #include "sadr/fluid/kernel.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
 #include "sadr/fluid/pair_terms.hpp"
@@ -304,5 +305,8 @@ SdpdPairParams SdpdBackend::make_pair_params(bool noise_on) const {
   pp.noise = noise_on;
   return pp;
 }
+
+/// Registers "sdpd" (called by the generated register_builtin_backends(), backends.cmake).
+void register_sdpd_backend(BackendRegistry& registry);
 
 }  // namespace sadr::fluid

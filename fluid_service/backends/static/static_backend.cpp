@@ -2,6 +2,7 @@
 #include "static_backend.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <string>
 
 #include "sadr/common/status.hpp"
@@ -74,6 +75,10 @@ void StaticBackend::restore_state(BlobReader& r, std::uint32_t version) {
   r.expect_end();
   c_ = std::move(c);
   time_ = t;
+}
+
+void register_static_backend(BackendRegistry& registry) {
+  registry.add("static", [] { return std::make_unique<StaticBackend>(); });
 }
 
 }  // namespace sadr::fluid

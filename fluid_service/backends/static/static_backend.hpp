@@ -9,6 +9,7 @@
 #pragma once
 
 #include "sadr/fluid/backend_base.hpp"
+#include "sadr/fluid/backend_registry.hpp"
 #include "sadr/fluid/species_operator.hpp"
 
 namespace sadr::fluid {
@@ -46,5 +47,8 @@ class StaticBackend final : public BackendBase {
   SpeciesOperator species_;  ///< built once: the particles never move
   double time_ = 0;
 };
+
+/// Registers "static" (called by the generated register_builtin_backends(), backends.cmake).
+void register_static_backend(BackendRegistry& registry);
 
 }  // namespace sadr::fluid

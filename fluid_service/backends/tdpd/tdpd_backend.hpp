@@ -176,7 +176,7 @@ class TdpdBackend final : public BackendBase {
   std::uint64_t reflections_ = 0;
 };
 
-/// Registers "tdpd" (the lead adds one call next to register_builtin_backends).
+/// Registers "tdpd" (called by the generated register_builtin_backends(), backends.cmake).
 void register_tdpd_backend(BackendRegistry& registry);
 
 }  // namespace sadr::fluid

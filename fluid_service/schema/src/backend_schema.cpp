@@ -76,13 +76,6 @@ bool Backend::needs(std::string_view key) const {
   return false;
 }
 
-const std::vector<Backend>& backends() {
-  // The registry list (fluid_service/backends/registry.cpp holds the factories), by name.
-  static const std::vector<Backend> list{prescribed_backend(), sdpd_backend(), static_backend(),
-                                         tdpd_backend()};
-  return list;
-}
-
 const Backend* find(std::string_view name) {
   for (const auto& b : backends()) {
     if (b.name == name) return &b;

@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: MIT
 /// \file builtin_backends.hpp
-/// The one greppable list of the fluid backends that ship with sadr.
+/// The fluid backends that ship with sadr: the list is SADR_FLUID_BACKENDS in
+/// fluid_service/backends/backends.cmake (one entry per folder backends/<name>/).
 #pragma once
 
 #include "sadr/fluid/backend_registry.hpp"
 
 namespace sadr::fluid {
 
-/// Registers "prescribed", "sdpd", "static" and "tdpd" (registry.cpp). New backends add one line
-/// there.
+/// Registers every backend of SADR_FLUID_BACKENDS, in alphabetical order, by calling its
+/// `register_<name>_backend(registry)` (defined in its folder). Generated from registry.cpp.in.
 void register_builtin_backends(BackendRegistry& registry);
 
 }  // namespace sadr::fluid

@@ -4,8 +4,10 @@
 /// its `fluid.parameters`. The scene loader validates `fluid:` from it, the plan decides from it,
 /// `sadr backends` prints it and docs/scene-format.md's backend tables are checked against it
 /// (tests/fluid/backend_schema_test.cpp). Plain C++ (no numerics, no ZeroMQ, no protobuf), so
-/// the orchestrator links it without the fluid code. Each backend's entry lives in its own folder
-/// (`backends/<name>/<name>_schema.cpp`); the list is `src/backend_schema.cpp`.
+/// the orchestrator links it without the fluid code. Each backend's entry, `Backend
+/// <name>_backend()`, lives in its own folder (`backends/<name>/<name>_schema.cpp`); the list is
+/// SADR_FLUID_BACKENDS in fluid_service/backends/backends.cmake, from which CMake generates
+/// `backends()` (`src/backend_list.cpp.in`).
 #pragma once
 
 #include <array>
@@ -74,11 +76,11 @@ struct Backend {
   [[nodiscard]] bool needs(std::string_view key) const;
 };
 
-/// Every backend, by name (the registry's order).
+/// Every backend, by name (the registry's order; generated from SADR_FLUID_BACKENDS).
 [[nodiscard]] const std::vector<Backend>& backends();
 /// The backend called `name`, or nullptr.
 [[nodiscard]] const Backend* find(std::string_view name);
-/// "prescribed, sdpd, static, tdpd".
+/// The names joined by ", " (e.g. "prescribed, sdpd, static, tdpd").
 [[nodiscard]] std::string names();
 /// The parameter table of one backend as Markdown (the rows of docs/scene-format.md).
 [[nodiscard]] std::string markdown_parameters(const Backend& b);
@@ -86,11 +88,5 @@ struct Backend {
 [[nodiscard]] std::string markdown_capabilities();
 /// `sadr backends`: every backend with its capabilities and parameters, plain text.
 [[nodiscard]] std::string describe();
-
-/// The entries (one per backend folder).
-Backend prescribed_backend();
-Backend sdpd_backend();
-Backend static_backend();
-Backend tdpd_backend();
 
 }  // namespace sadr::fluid::schema

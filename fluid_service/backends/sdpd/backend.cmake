@@ -1,0 +1,12 @@
+# SPDX-License-Identifier: MIT
+# The "sdpd" backend's sources in sadr::fluid_backends (included by ../CMakeLists.txt; its schema
+# entry sdpd_schema.cpp goes into sadr::fluid_schema by convention, ../backends.cmake).
+target_sources(sadr_fluid_backends PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_backend.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_fused_step.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_gather.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_half_path.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_integrator.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_limits.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_open_boundary.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_restart.cpp)
