@@ -59,6 +59,28 @@ def main():
                        th))
     scene["particles"] = {"file": "particles.csv", "spacing": spacing}
     sp["initial"] = [{"count_column" if stochastic else "concentration_column": "theta0"}]
+    # the held values and the wall surfaces belong to wall particles, but fluid particles move into
+    # the geometric regions (across the staircase cylinder r = 0.1, past the planes x, y = 0, 1):
+    # those regions become the wall particles they held, by id (row order of the particle file)
+    kind = data[:, col["kind"]]
+    x, y = data[:, col["x"]], data[:, col["y"]]
+    regions = {r["name"]: r for r in scene["regions"]}
+    used = {b["region"] for b in sp.get("boundaries", [])} | {w["region"] for w in scene["fluid"].get("wall_planes", [])}
+    for name in sorted(used):
+        r = regions[name]
+        if r["shape"] == "disk":
+            inside = np.hypot(x - r["center"][0], y - r["center"][1]) <= r["radius"]
+        elif r["shape"] == "box":
+            inside = (x >= r["lower"][0]) & (x <= r["upper"][0]) & (y >= r["lower"][1]) & (y <= r["upper"][1])
+        elif r["shape"] == "channel":
+            v = x if r["axis"] == "x" else y
+            inside = (v >= r["lower"]) & (v <= r["upper"])
+        else:
+            sys.exit("region %s: shape %s not handled" % (name, r["shape"]))
+        ids = [int(i) for i in np.nonzero(inside & (kind == 1))[0]]
+        scene["regions"].append({"name": name + "_walls", "shape": "ids", "ids": ids})
+    for b in sp.get("boundaries", []) + scene["fluid"].get("wall_planes", []):
+        b["region"] = b["region"] + "_walls"
     # the wall densities of a frame differ by a few 1e-3, and a `count` boundary needs equal particle
     # volumes: hold the same copy number as the concentration count / dx^d instead (the SSA rounds
     # C V_i to the nearest whole number, the same count while |V_i / dx^d - 1| < 0.5 / count)

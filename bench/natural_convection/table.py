@@ -55,7 +55,7 @@ def main():
                 var += ", " + a["note"]
             nu = s["Nu_half"] / s["Nu_half_reference"] - 1
             ts = "%g" % max(a["t_steady"]) if a["steady"] else "not steady (last rates E/Nu_c/Nu_e %s); --from %g" % (
-                "/".join("%.0e" % v for r in a["last_rates"].values() for v in r.values()), a["window"][0])
+                "/".join("%.0e" % v if v is not None else "-" for r in a["last_rates"].values() for v in r.values()), a["window"][0])
             print("| %s | %s | %s | %g-%g (%d) | **%.3e** | %.3e | **%.3f** | %.3f | %.3f (%+.1f %%) | %.2f %% |"
                   % (e, var, ts, a["window"][0], a["window"][1], a["frames_averaged"],
                      s["theta_err_digitised"], s["theta_err_ref_at_digitised_x"], s["vstar_err_digitised"],
