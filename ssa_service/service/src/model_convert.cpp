@@ -140,4 +140,29 @@ std::vector<InflowBuffer> inflows_from_proto(const v1::SsaModel& model, int dime
   return out;
 }
 
+void keep_non_fluid_wall_voxels(Model& model, const ParticleState& particles) {
+  auto keep = [&](const char* what, std::size_t k, std::vector<std::uint32_t>& voxels) {
+    if (voxels.empty()) return;  // every wall
+    particles.validate();        // array lengths, before kind() is used
+    std::vector<std::uint32_t> kept;
+    kept.reserve(voxels.size());
+    for (const std::uint32_t v : voxels) {
+      if (v >= particles.size() || particles.kind(v) != ParticleKind::kFluid) kept.push_back(v);
+    }
+    if (kept.empty()) {
+      throw InvalidArgument(std::string(what) + "[" + std::to_string(k) + "]: its " +
+                            std::to_string(voxels.size()) +
+                            " particles are all fluid particles; a wall condition applies to "
+                            "the non-fluid particles of its region");
+    }
+    voxels = std::move(kept);
+  };
+  for (std::size_t k = 0; k < model.reservoirs.size(); ++k) {
+    keep("reservoirs", k, model.reservoirs[k].voxels);
+  }
+  for (std::size_t k = 0; k < model.free_walls.size(); ++k) {
+    keep("free_walls", k, model.free_walls[k].voxels);
+  }
+}
+
 }  // namespace sadr::ssa

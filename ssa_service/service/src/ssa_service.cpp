@@ -86,6 +86,7 @@ void SsaServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
   const ParticleState particles = wire::from_proto(req.particles(), "init.particles");
   std::vector<std::string> names;
   Model model = model_from_proto(req.model(), particles.size(), names);
+  keep_non_fluid_wall_voxels(model, particles);
   auto solver = std::make_unique<NsmSolver>(std::move(model), req.model().seed());
   solver->update_graph(particles);
   for (int k = 0; k < req.counts().species_size(); ++k) {

@@ -36,6 +36,14 @@ std::vector<InflowBuffer> inflows_from_proto(const v1::SsaModel& model, int dime
 Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
                        std::vector<std::string>& species_names);
 
+/// A scene's wall conditions apply to the non-fluid particles of their region
+/// (docs/scene-format.md "boundaries"): drops the fluid particles from the voxel lists of the
+/// reservoirs and free walls, which the core takes as lists of wall particles. Fluid particles
+/// lie in a geometric region wherever they have moved into it (a scene started from a frame).
+/// Throws InvalidArgument when a list had particles and none of them is non-fluid (an empty
+/// list would mean every wall).
+void keep_non_fluid_wall_voxels(Model& model, const ParticleState& particles);
+
 class SsaServiceHandler : public wire::TypedHandler<v1::SsaRequest, v1::SsaReply> {
  public:
   SsaServiceHandler();
