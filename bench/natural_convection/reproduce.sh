@@ -3,14 +3,14 @@
 # current scenes (Morris walls; c0 = 3 at Ra = 1e4, 4 at 1e5 and 1e6):
 #   * the deterministic scenes at 81^2 (Ra = 1e4, 1e5 to t = 50; 1e6 to t = 70),
 #   * the stochastic Ra = 1e4 scene at N = 10 and N = 100 molecules per particle (t = 50), and
-#     the stochastic Ra = 1e5 scene at N = 10 (t = 60),
+#     the stochastic Ra = 1e5 scene at N = 10 (t = 60) and Ra = 1e6 at N = 10 (t = 70),
 #   * the convergence runs at Ra = 1e4: 41^2 (the reduced test scene) and 121^2 to t = 40,
 #   * an ensemble of 4 realizations at N = 10 restarted from the N = 10 run's t = 30 frame
 #     (8 time units each; restart_scene.py), to check that frames and realizations count alike,
 # then analyse.py (steady-state criterion, window averages, noise), table.py, convergence.py and
 # plots.py. Runs go one thread each, two at a time; each run's CPU time is in OUT/NAME.time
 # (/usr/bin/time -v). The runs already present in OUT are reused (delete a run's folder to redo it).
-# About 70 CPU minutes in all (one core each; docs/natural-convection.md, "Cost").
+# About 80 CPU minutes in all (one core each; docs/natural-convection.md, "Cost").
 #
 #   bench/natural_convection/reproduce.sh BIN_DIR OUT
 set -euo pipefail
@@ -50,6 +50,7 @@ wait $p1 && wait $p2
 # shellcheck disable=SC2046
 run st4_n100 50 "$EX/natural_convection_ra1e4_stochastic.yaml" $(stochastic 100)
 run st5_n10 60 "$EX/natural_convection_ra1e5_stochastic.yaml"
+run st6_n10 70 "$EX/natural_convection_ra1e6_stochastic.yaml"
 
 A="$PY $HERE/analyse.py"
 $A "$OUT/ra1e4" --ra 1e4 --json "$OUT/a4.json" > "$OUT/a4.txt" || true
@@ -60,6 +61,7 @@ $A "$OUT/ra1e6" --ra 1e6 --from 54 --json "$OUT/a6.json" > "$OUT/a6.txt" || true
 $A "$OUT/st4_n10" --ra 1e4 --molecules 10 --from 26 --against "$OUT/ra1e4" --json "$OUT/s10.json" > "$OUT/s10.txt" || true
 $A "$OUT/st4_n100" --ra 1e4 --molecules 100 --from 26 --against "$OUT/ra1e4" --json "$OUT/s100.json" > "$OUT/s100.txt" || true
 $A "$OUT/st5_n10" --ra 1e5 --molecules 10 --from 32 --against "$OUT/ra1e5" --json "$OUT/s5_10.json" > "$OUT/s5_10.txt" || true
+$A "$OUT/st6_n10" --ra 1e6 --molecules 10 --from 54 --against "$OUT/ra1e6" --json "$OUT/s6_10.json" > "$OUT/s6_10.txt" || true
 # the ensemble: frames 1-8 after the restart (t = 31-38 of the run it starts from)
 $A "$OUT/st4_n10_ens" --ra 1e4 --molecules 10 --from 1 --json "$OUT/s10_ens.json" > "$OUT/s10_ens.txt" || true
 # one realization over the same 8 time units, for comparison
@@ -73,7 +75,7 @@ $A "$OUT/ra1e4_121" --ra 1e4 --h "$($PY -c 'print(3/121)')" --dx "$($PY -c 'prin
 
 $PY "$HERE/table.py" "$OUT"/a4.json "$OUT"/s10.json "$OUT"/s100.json \
   "$OUT"/s10_ens.json="8 frames each, restarted from the N = 10 run at t = 30" "$OUT"/a5.json "$OUT"/s5_10.json \
-  "$OUT"/a6.json | tee "$OUT/table.md"
+  "$OUT"/a6.json "$OUT"/s6_10.json | tee "$OUT/table.md"
 $PY "$HERE/convergence.py" "$OUT"/c41.json=41 "$OUT"/c81.json=81 "$OUT"/c121.json=121 | tee "$OUT/convergence.md"
 last() { ls "$OUT/$1"/frames/frame_*.csv | tail -1; }
 $PY "$HERE/plots.py" --analysis "$OUT"/a4.json "$OUT"/a5.json "$OUT"/a6.json \
