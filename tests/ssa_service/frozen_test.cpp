@@ -9,28 +9,18 @@
 #include "sadr/common/status.hpp"
 #include "sadr/ssa/ssa_service.hpp"
 #include "sadr/wire/convert.hpp"
+#include "service_probe.hpp"
 
 namespace sadr::ssa {
 namespace {
 
-class Probe : public SsaServiceHandler {
- public:
-  void call(const v1::SsaRequest& request, v1::SsaReply& reply) {
-    bool shutdown = false;
-    handle_typed(request, reply, shutdown);
-  }
-};
+using testing::Probe;
 
 v1::SsaRequest init_request() {
   v1::SsaRequest r;
   auto* init = r.mutable_init();
   auto* m = init->mutable_model();
-  Box box;
-  box.dimension = 1;
-  box.lo = {0, 0, 0};
-  box.hi = {2, 1, 1};
-  box.periodic = {true, false, false};
-  wire::to_proto(box, *m->mutable_box());
+  testing::set_line_box(*m, 2.0, true);
   m->set_smoothing_length(0.5);
   const std::string a = "A", b = "B";
   auto* species = m->add_species();

@@ -11,17 +11,12 @@
 #include "sadr/common/status.hpp"
 #include "sadr/ssa/ssa_service.hpp"
 #include "sadr/wire/convert.hpp"
+#include "service_probe.hpp"
 
 namespace sadr::ssa {
 namespace {
 
-class Probe : public SsaServiceHandler {
- public:
-  void call(const v1::SsaRequest& request, v1::SsaReply& reply) {
-    bool shutdown = false;
-    handle_typed(request, reply, shutdown);
-  }
-};
+using testing::Probe;
 
 // 1D line of 4 particles, unit volumes: wall, fluid, fluid, wall; species A held at 7
 // molecules per unit length on region "left" = {0, 1} (one wall particle, one fluid particle).
@@ -29,12 +24,7 @@ v1::SsaRequest init_request(std::vector<std::uint32_t> left) {
   v1::SsaRequest r;
   auto* init = r.mutable_init();
   auto* m = init->mutable_model();
-  Box box;
-  box.dimension = 1;
-  box.lo = {0, 0, 0};
-  box.hi = {4, 1, 1};
-  box.periodic = {false, false, false};
-  wire::to_proto(box, *m->mutable_box());
+  testing::set_line_box(*m, 4.0, false);
   m->set_smoothing_length(1.5);
   auto* species = m->add_species();
   species->set_name("A");
