@@ -64,4 +64,10 @@ std::string format_value(double value) {
   return buf;
 }
 
+std::string format_short(double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", value);
+  return buf;
+}
+
 }  // namespace sadr

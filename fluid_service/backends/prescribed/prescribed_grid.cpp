@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -14,13 +13,6 @@
 
 namespace sadr::fluid {
 namespace {
-
-/// A number for messages, as a CSV would write it (not 17 digits).
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.10g", v);
-  return b;
-}
 
 constexpr const char* kCoord[3] = {"x", "y", "z"};
 constexpr const char* kVel[3] = {"ux", "uy", "uz"};
@@ -52,7 +44,7 @@ std::string columns_allowed(int d) {
 
 std::string point_text(const std::array<double, 3>& x, int d) {
   std::string s = "(";
-  for (int a = 0; a < d; ++a) s += (a ? ", " : "") + num(x[a]);
+  for (int a = 0; a < d; ++a) s += (a ? ", " : "") + format_short(x[a]);
   return s + ")";
 }
 
@@ -163,7 +155,7 @@ GridField GridField::read(const std::string& path, const Box& box) {
     g.axes_[a] = distinct(std::move(v), tol[a]);
     if (g.axes_[a].size() < 2) {
       fail(rows.front().line, std::string("every point has ") + kCoord[a] + " = " +
-                                  num(g.axes_[a].front()) + "; a " + std::to_string(d) +
+                                  format_short(g.axes_[a].front()) + "; a " + std::to_string(d) +
                                   "D grid needs >= 2 values of " + kCoord[a]);
     }
     g.stride_[a] = nodes;
@@ -207,9 +199,9 @@ GridField GridField::read(const std::string& path, const Box& box) {
     const double t = 1e-9 * g.box_len_[a];
     if (g.periodic_[a] && (g.lo(a) > box.lo[a] + t || g.hi(a) < box.hi[a] - t)) {
       fail(line_no, std::string("along the periodic axis ") + kCoord[a] + " the grid spans [" +
-                        num(g.lo(a)) + ", " + num(g.hi(a)) +
-                        "]; allowed: a grid that spans the box [" + num(box.lo[a]) + ", " +
-                        num(box.hi[a]) + "]");
+                        format_short(g.lo(a)) + ", " + format_short(g.hi(a)) +
+                        "]; allowed: a grid that spans the box [" + format_short(box.lo[a]) + ", " +
+                        format_short(box.hi[a]) + "]");
     }
   }
   return g;
@@ -222,7 +214,8 @@ std::string GridField::point(const double* x) const {
 
 std::string GridField::extent() const {
   std::string s;
-  for (int a = 0; a < dim_; ++a) s += (a ? " x [" : "[") + num(lo(a)) + ", " + num(hi(a)) + "]";
+  for (int a = 0; a < dim_; ++a)
+    s += (a ? " x [" : "[") + format_short(lo(a)) + ", " + format_short(hi(a)) + "]";
   return s;
 }
 

@@ -2,7 +2,6 @@
 /// \file tdpd_parameters.cpp
 /// TdpdParameters: FluidModel::backend_parameters keys and range checks.
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -10,16 +9,6 @@
 #include "tdpd_backend.hpp"
 
 namespace sadr::fluid {
-namespace {
-
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return os.str();
-}
-
-}  // namespace
 
 void TdpdParameters::apply(const std::map<std::string, double>& kv) {
   for (const auto& [key, value] : kv) {
@@ -37,12 +26,14 @@ void TdpdParameters::apply(const std::map<std::string, double>& kv) {
       skin = value;
     } else if (key == "effective_walls") {
       if (value != 0.0 && value != 1.0) {
-        throw InvalidArgument("tdpd.effective_walls = " + num(value) + " (allowed 0 or 1)");
+        throw InvalidArgument("tdpd.effective_walls = " + format_value(value) +
+                              " (allowed 0 or 1)");
       }
       effective_walls = value == 1.0;
     } else if (key == "buffer_axis") {
       if (!(value >= -1.0 && value <= 2.0) || value != std::floor(value)) {
-        throw InvalidArgument("tdpd.buffer_axis = " + num(value) + " (allowed -1, 0, 1, 2)");
+        throw InvalidArgument("tdpd.buffer_axis = " + format_value(value) +
+                              " (allowed -1, 0, 1, 2)");
       }
       buffer_axis = static_cast<int>(value);
     } else if (key == "inflow_length") {
@@ -61,7 +52,8 @@ void TdpdParameters::validate(double r_c) const {
   std::vector<std::string> bad;
   auto need = [&](bool ok, const char* field, double v, const char* range) {
     if (!ok)
-      bad.push_back(std::string("tdpd.") + field + " = " + num(v) + " (allowed " + range + ")");
+      bad.push_back(std::string("tdpd.") + field + " = " + format_value(v) + " (allowed " + range +
+                    ")");
   };
   need(std::isfinite(a) && a >= 0.0, "a", a, ">= 0");
   need(std::isfinite(gamma) && gamma >= 0.0, "gamma", gamma, ">= 0");

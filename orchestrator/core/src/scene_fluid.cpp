@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <span>
 #include <string>
 
+#include "sadr/common/status.hpp"
 #include "sadr/fluid/backend_schema.hpp"
 #include "scene_parts.hpp"
 
@@ -61,12 +61,6 @@ void read_boussinesq(SceneContext& ctx, const Field& fluid) {
 }
 
 /// A number for messages (as a scene would write it, not 17 digits).
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.10g", v);
-  return b;
-}
-
 int axis_index(std::string_view name) {
   return name == "x" ? 0 : name == "y" ? 1 : 2;
 }
@@ -203,7 +197,8 @@ void read_parameters(SceneContext& ctx, const Field& f, const schema::Backend* b
     const auto v = r.number(params, key, Bound::kAny, spec ? spec->unit : "", true);
     std::string why;
     if (v && spec && !spec->allows(*v, why)) {
-      r.error(YamlReader::child(params, key), num(*v) + " is out of range; allowed: " + why + " [" +
+      r.error(YamlReader::child(params, key), format_short(*v) +
+                                                  " is out of range; allowed: " + why + " [" +
                                                   spec->unit + "] (" + spec->doc + ")");
       continue;
     }
@@ -243,16 +238,16 @@ void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
     const double hi = ctx.scene.box.hi[static_cast<std::size_t>(axis)];
     if (!((*in)[0] < (*in)[1] && (*in)[1] < (*out)[0] && (*out)[0] < (*out)[1])) {
       r.error(YamlReader::child(ob, "outlet"),
-              std::string("inlet [") + num((*in)[0]) + ", " + num((*in)[1]) + "], outlet [" +
-                  num((*out)[0]) + ", " + num((*out)[1]) +
+              std::string("inlet [") + format_short((*in)[0]) + ", " + format_short((*in)[1]) +
+                  "], outlet [" + format_short((*out)[0]) + ", " + format_short((*out)[1]) +
                   "]; allowed: inlet = [x0 - Lb, x0], outlet = [x1, x1 + Lb'] with x0 < x1 (the "
                   "fluid part [x0, x1] between them) and lengths > 0");
     } else if (ctx.geometry_ok &&
                ((*in)[0] < lo - ctx.tolerance() || (*out)[1] > hi + ctx.tolerance())) {
-      r.error(YamlReader::child(ob, "inlet"), std::string("the channel [") + num((*in)[0]) + ", " +
-                                                  num((*out)[1]) + "] leaves the box [" + num(lo) +
-                                                  ", " + num(hi) +
-                                                  "] along the flow axis; allowed: inside the box");
+      r.error(YamlReader::child(ob, "inlet"),
+              std::string("the channel [") + format_short((*in)[0]) + ", " +
+                  format_short((*out)[1]) + "] leaves the box [" + format_short(lo) + ", " +
+                  format_short(hi) + "] along the flow axis; allowed: inside the box");
     }
     p.inlet_lo = (*in)[0];
     p.fluid_lo = (*in)[1];
@@ -297,7 +292,7 @@ void read_open_boundary(SceneContext& ctx, const Field& fluid, bool allowed) {
   p.cross_axis = ca;
   if (auto w = r.vector(ob, "walls", 2, "length", true)) {
     if (!((*w)[0] < (*w)[1])) {
-      r.error(walls, std::string("[") + num((*w)[0]) + ", " + num((*w)[1]) +
+      r.error(walls, std::string("[") + format_short((*w)[0]) + ", " + format_short((*w)[1]) +
                          "]; allowed: [lo, hi] with lo < hi (the no-slip planes where the "
                          "parabola is zero)");
     }
@@ -330,23 +325,23 @@ void check_open_boundary(SceneContext& ctx) {
   const double h = ctx.scene.fluid.smoothing_length;
   if (h > 0 && x0 - in_lo < h * (1 - 1e-9)) {
     r.error(YamlReader::child(ob, "inlet"),
-            std::string("length ") + num(x0 - in_lo) +
-                " is shorter than the kernel support h = " + num(h) +
+            std::string("length ") + format_short(x0 - in_lo) +
+                " is shorter than the kernel support h = " + format_short(h) +
                 "; allowed: a length >= h (fluid near the inlet needs a full "
                 "kernel of buffer particles)");
   }
   if (h > 0 && out_hi - x1 < h * (1 - 1e-9)) {
-    r.error(YamlReader::child(ob, "outlet"),
-            std::string("length ") + num(out_hi - x1) +
-                " is shorter than the kernel support h = " + num(h) + "; allowed: a length >= h");
+    r.error(YamlReader::child(ob, "outlet"), std::string("length ") + format_short(out_hi - x1) +
+                                                 " is shorter than the kernel support h = " +
+                                                 format_short(h) + "; allowed: a length >= h");
   }
   const double dx = ctx.scene.lattice_spacing;
   if (dx > 0) {  // the inlet conveyor's slots repeat with the inlet length
     const double k = (x0 - in_lo) / dx;
     if (std::fabs(k - std::round(k)) > 1e-6 * std::max(1.0, k)) {
       r.error(YamlReader::child(ob, "inlet"),
-              std::string("length ") + num(x0 - in_lo) + " is not a whole number of " +
-                  "particles.spacing = " + num(dx) +
+              std::string("length ") + format_short(x0 - in_lo) + " is not a whole number of " +
+                  "particles.spacing = " + format_short(dx) +
                   "; allowed: k * spacing (the inlet's k lattice columns are the slots of the "
                   "inflow conveyor)");
     }
@@ -360,9 +355,9 @@ void check_open_boundary(SceneContext& ctx) {
     if (xa < in_lo - tol || xa > out_hi + tol) {
       r.error(YamlReader::child(ob, "inlet"),
               std::string("particle ") + std::to_string(i) + " (kind " +
-                  std::string(to_string(s.kind(i))) + ") at " + num(xa) +
-                  " along the flow axis lies outside the channel [" + num(in_lo) + ", " +
-                  num(out_hi) +
+                  std::string(to_string(s.kind(i))) + ") at " + format_short(xa) +
+                  " along the flow axis lies outside the channel [" + format_short(in_lo) + ", " +
+                  format_short(out_hi) +
                   "]; allowed: only wall particles outside the inlet and outlet buffers");
       return;
     }

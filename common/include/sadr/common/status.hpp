@@ -97,4 +97,8 @@ void throw_if_error(const Status& status);
 /// Formats a double for error messages with enough digits to be unambiguous.
 std::string format_value(double value);
 
+/// Formats a double as a person writes it in a scene or CSV ("%.10g": 0.1, not
+/// 0.10000000000000001).
+std::string format_short(double value);
+
 }  // namespace sadr
