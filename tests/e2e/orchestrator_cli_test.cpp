@@ -165,16 +165,22 @@ TEST(OrchestratorCli, OpenMpWaitsArePassiveUnlessTheUserChose) {
   if (!HasFailure()) fs::remove_all(d);  // keep the evidence of a failure
 }
 
-TEST(OrchestratorCli, RunHalfThenResumeEqualsFullRun) {
-  const fs::path d = scratch("resume");
-  const fs::path scene = write_scene(d, annihilation_scene(0.4, "[0.1, 0.2, 0.3, 0.4]", 0.1));
-  const std::string sadr = bin("sadr") + " ";
+// `sadr run` of `scene` to its end into d/full and to t = 0.2 into d/half (the resume tests).
+void run_full_and_half(const std::string& sadr, const fs::path& scene, const fs::path& d) {
   ASSERT_EQ(run(sadr + "run " + scene.string() + " -q -o " + (d / "full").string(), d / "a.log"), 0)
       << read_file(d / "a.log");
   ASSERT_EQ(run(sadr + "run " + scene.string() + " -q --stop-at 0.2 -o " + (d / "half").string(),
                 d / "b.log"),
             0)
       << read_file(d / "b.log");
+}
+
+TEST(OrchestratorCli, RunHalfThenResumeEqualsFullRun) {
+  const fs::path d = scratch("resume");
+  const fs::path scene = write_scene(d, annihilation_scene(0.4, "[0.1, 0.2, 0.3, 0.4]", 0.1));
+  const std::string sadr = bin("sadr") + " ";
+  run_full_and_half(sadr, scene, d);
+  if (HasFatalFailure()) return;
   EXPECT_EQ(frames(d / "half").size(), 2u * 3u);  // t = 0.1, 0.2 as csv + vtu (+ none at 0)
   ASSERT_EQ(run(sadr + "resume " + (d / "half" / "checkpoint").string() + " -q", d / "c.log"), 0)
       << read_file(d / "c.log");
@@ -189,12 +195,8 @@ TEST(OrchestratorCli, ResumeOfARunFolderUsesItsCheckpointDirectory) {
   const fs::path d = scratch("resume_run_dir");
   const fs::path scene = write_scene(d, annihilation_scene(0.4, "[0.2, 0.4]", 0.1));
   const std::string sadr = bin("sadr") + " ";
-  ASSERT_EQ(run(sadr + "run " + scene.string() + " -q -o " + (d / "full").string(), d / "a.log"), 0)
-      << read_file(d / "a.log");
-  ASSERT_EQ(run(sadr + "run " + scene.string() + " -q --stop-at 0.2 -o " + (d / "half").string(),
-                d / "b.log"),
-            0)
-      << read_file(d / "b.log");
+  run_full_and_half(sadr, scene, d);
+  if (HasFatalFailure()) return;
   ASSERT_EQ(run(sadr + "resume " + (d / "half").string() + " -q", d / "c.log"), 0)
       << read_file(d / "c.log");
   expect_same_frames(d / "full", d / "half");
