@@ -209,8 +209,12 @@ TEST(ServiceAuth, OverTcpOnlyClientsWithAnAuthorizedKeyGetInAndALiveRunIsUnaffec
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0) << e2e::read_file(d / "run.log");
   EXPECT_EQ(e2e::frames(d / "out").size(), 3u);  // t = 0, 2, 4
-  // Without keys, sadr is refused at once and says why (exit 3, not a timeout).
-  EXPECT_EQ(e2e::run(bin("sadr") + " run " + scene.string() + " -q --force -o " + out + remote,
+  // Without keys, sadr is refused at once and says why (exit 3, not a timeout). --timeout 30
+  // bounds the wait if the refusal were missed: this test twice ran past ctest's 300 s on a
+  // loaded machine (2026-12-02, where it waited is not known), and the default 120 s per call
+  // with a retry would pass 300 s here; bounded, it fails with its log instead.
+  EXPECT_EQ(e2e::run(bin("sadr") + " run " + scene.string() + " -q --force --timeout 30 -o " + out +
+                         remote,
                      d / "nokey.log"),
             3);
   EXPECT_NE(e2e::read_file(d / "nokey.log").find("security handshake failed (we offered NULL)"),
