@@ -5,15 +5,15 @@
 /// particle i and a wall particle j of a planar WallRegion, the wall velocity is -(d_j/d_i) v_i,
 /// i.e. v_ij = beta v_i with beta = min(1.5, 1 + d_j / max(d_i, 1e-3 h)), d the distance to the
 /// region's wall surface (d_j behind it, d_i in front): a plane, or a circle / sphere with the
-/// fluid outside (WallRegion::surface_radius > 0). The pressure term keeps v_j = 0.
+/// fluid outside (WallRegion::surface_radius > 0). The pressure term keeps v_j = 0. The geometry
+/// (distances, beta) is common/wall_surface.hpp, shared with the SSA's Dirichlet reservoirs.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/common/wall_surface.hpp"
 #include "sadr/fluid/fluid_model.hpp"
 
 namespace sadr::fluid {
@@ -24,7 +24,8 @@ class MorrisWalls {
   /// (FluidModel::assign_wall_regions) and its depth behind the region's plane.
   void setup(const FluidModel& model, const ParticleState& initial) {
     enabled_ = model.wall_model == WallModel::kMorrisExtrapolated;
-    regions_ = model.wall_regions;
+    surfaces_.clear();
+    for (const auto& reg : model.wall_regions) surfaces_.push_back(reg.surface());
     const std::size_t n = initial.size();
     region_.assign(n, -1);
     depth_.assign(n, 0.0);
@@ -33,8 +34,7 @@ class MorrisWalls {
     for (std::size_t i = 0; i < n; ++i) {
       const int w = region_[i];
       if (w < 0) continue;
-      const auto& reg = regions_[static_cast<std::size_t>(w)];
-      depth_[i] = std::max(-signed_distance(reg, &initial.positions[3 * i]), 0.0);
+      depth_[i] = surfaces_[static_cast<std::size_t>(w)].depth(&initial.positions[3 * i]);
     }
   }
   [[nodiscard]] bool enabled() const { return enabled_; }
@@ -43,19 +43,8 @@ class MorrisWalls {
   /// beta of the pair of the fluid particle at xi with wall particle j (extrapolates(j)), for
   /// the kernel support h.
   [[nodiscard]] double beta(const double* xi, std::uint32_t j, double h) const {
-    const auto& reg = regions_[static_cast<std::size_t>(region_[j])];
-    return std::min(1.5, 1.0 + depth_[j] / std::max(signed_distance(reg, xi), 1e-3 * h));
-  }
-  /// Distance of x from the region's wall surface, positive on the fluid side.
-  [[nodiscard]] static double signed_distance(const WallRegion& reg, const double* x) {
-    double d = 0;
-    if (reg.surface_radius > 0) {
-      for (int a = 0; a < 3; ++a)
-        d += (x[a] - reg.surface_point[a]) * (x[a] - reg.surface_point[a]);
-      return std::sqrt(d) - reg.surface_radius;
-    }
-    for (int a = 0; a < 3; ++a) d += reg.inward_normal[a] * (x[a] - reg.surface_point[a]);
-    return d;
+    const auto& surface = surfaces_[static_cast<std::size_t>(region_[j])];
+    return morris_beta(depth_[j], surface.signed_distance(xi), h);
   }
   [[nodiscard]] std::size_t bytes() const {
     return region_.capacity() * sizeof(std::int32_t) + depth_.capacity() * sizeof(double);
@@ -63,9 +52,9 @@ class MorrisWalls {
 
  private:
   bool enabled_ = false;
-  std::vector<WallRegion> regions_;
-  std::vector<std::int32_t> region_;  ///< wall particle -> WallRegion index (-1: none)
-  std::vector<double> depth_;         ///< distance of a wall particle behind its plane [length]
+  std::vector<WallSurface> surfaces_;  ///< per WallRegion
+  std::vector<std::int32_t> region_;   ///< wall particle -> WallRegion index (-1: none)
+  std::vector<double> depth_;          ///< distance of a wall particle behind its plane [length]
 };
 
 }  // namespace sadr::fluid

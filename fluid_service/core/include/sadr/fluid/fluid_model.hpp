@@ -17,6 +17,7 @@
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/rate_law.hpp"
+#include "sadr/common/wall_surface.hpp"
 
 namespace sadr::fluid {
 
@@ -50,6 +51,10 @@ struct WallRegion {
   /// 0: the surface is the plane through surface_point normal to inward_normal; > 0: a circle
   /// (2D) / sphere (3D) of this radius around surface_point, the fluid outside [length].
   double surface_radius = 0.0;
+  /// The surface as common/wall_surface.hpp has it (distances, Morris beta).
+  [[nodiscard]] WallSurface surface() const {
+    return {surface_point, inward_normal, surface_radius};
+  }
 };
 
 /// Velocity boundary condition of the wall particles (no-slip in both cases).
