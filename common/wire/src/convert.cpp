@@ -115,6 +115,28 @@ void to_proto(const ParticleState& in, common::v1::ParticleState& out, bool with
   out.mutable_ids()->Assign(in.ids.begin(), in.ids.end());
 }
 
+WallSurface from_proto(const common::v1::WallPlane& in, std::string_view where) {
+  const std::string at(where);
+  auto vec3 = [&](const google::protobuf::RepeatedField<double>& v, const std::string& field,
+                  std::array<double, 3> fallback) {
+    if (v.empty()) return fallback;
+    if (v.size() != 3) {
+      throw InvalidArgument(at + field + " needs 3 values, got " + std::to_string(v.size()));
+    }
+    return std::array<double, 3>{v[0], v[1], v[2]};
+  };
+  WallSurface s;
+  s.point = vec3(in.point(), ".point", {0, 0, 0});
+  s.inward_normal = vec3(in.normal(), ".normal", {1, 0, 0});
+  if (!(in.radius() >= 0) || !std::isfinite(in.radius())) {
+    throw InvalidArgument(at + ".radius = " + std::to_string(in.radius()) +
+                          " (allowed: 0 for a plane, or a finite length > 0 for a circle / "
+                          "sphere)");
+  }
+  s.radius = in.radius();
+  return s;
+}
+
 namespace {
 
 /// in.kinds into `kinds` (resized), each checked to be a ParticleKind value.

@@ -114,14 +114,10 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     WallRegion region;
     region.name = p.region();
     region.particles = wire::region_particles(regions, p.region(), here);
-    region.surface_point = vec3(p.point(), here + ".point", {0, 0, 0});
-    region.inward_normal = vec3(p.normal(), here + ".normal", {1, 0, 0});
-    if (!(p.radius() >= 0) || !std::isfinite(p.radius())) {
-      throw InvalidArgument(here + ".radius = " + std::to_string(p.radius()) +
-                            " (allowed: 0 for a plane, or a finite length > 0 for a circle / "
-                            "sphere)");
-    }
-    region.surface_radius = p.radius();
+    const WallSurface surface = wire::from_proto(p, here);
+    region.surface_point = surface.point;
+    region.inward_normal = surface.inward_normal;
+    region.surface_radius = surface.radius;
     m.wall_regions.push_back(std::move(region));
     wall_region_index.emplace(p.region(), m.wall_regions.size() - 1);
   }

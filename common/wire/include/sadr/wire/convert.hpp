@@ -18,6 +18,7 @@
 #include "sadr/common/v1/model.pb.h"
 #include "sadr/common/v1/particles.pb.h"
 #include "sadr/common/v1/status.pb.h"
+#include "sadr/common/wall_surface.hpp"
 
 namespace sadr::wire {
 
@@ -37,6 +38,10 @@ Box from_proto(const common::v1::Box& in, std::string_view where);
 /// species is resolved by the service that applies it. Checks one bound per axis < dimension, lower
 /// <= upper and a finite concentration >= 0; errors name `where` (e.g. "init.model.inflows[0]").
 InflowBox from_proto(const common::v1::InflowBuffer& in, int dimension, std::string_view where);
+
+/// A wall surface (sadr.common.v1.WallPlane, its region resolved by the caller): point and
+/// normal 3 values each or empty (then 0 and +x), radius finite and >= 0; errors name `where`.
+WallSurface from_proto(const common::v1::WallPlane& in, std::string_view where);
 
 /// Copies the arrays; velocities only if `with_velocities` and present.
 void to_proto(const ParticleState& in, common::v1::ParticleState& out, bool with_velocities = true);
