@@ -179,6 +179,30 @@ void Model::validate() const {
       }
     }
   }
+  for (std::size_t k = 0; k < morris_walls.size(); ++k) {
+    const std::string f = "morris_walls[" + std::to_string(k) + "]";
+    const WallSurface& w = morris_walls[k].surface;
+    if (morris_walls[k].voxels.empty()) issues.push_back(f + ".voxels: empty");
+    if (!std::all_of(w.point.begin(), w.point.end(), [](double x) { return std::isfinite(x); })) {
+      issues.push_back(f + ".surface.point: not finite");
+    }
+    if (!finite_nonneg(w.radius)) {
+      issues.push_back(f + ".surface.radius = " + format_value(w.radius) +
+                       " (allowed: 0 for a plane, or finite and > 0)");
+    } else if (w.radius == 0) {
+      const auto& n = w.inward_normal;
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(std::abs(len - 1.0) < 1e-9)) {
+        issues.push_back(f + ".surface.inward_normal has length " + format_value(len) +
+                         " (allowed: a unit vector)");
+      }
+    }
+    if (!free_walls.empty()) {
+      issues.push_back(f +
+                       ": Morris walls together with free_walls are not supported (the "
+                       "scaled edges would reach the free species too)");
+    }
+  }
   if (issues.empty()) return;
   std::string msg = "invalid ssa model: ";
   for (std::size_t k = 0; k < issues.size(); ++k) msg += (k ? "; " : "") + issues[k];
@@ -274,6 +298,16 @@ std::uint64_t Model::fingerprint() const {
       f.pod(w.species);
       for (auto v : w.voxels) f.pod(v);
       f.pod(-1);
+    }
+  }
+  if (!morris_walls.empty()) {  // absent when unused: old fingerprints stay valid
+    f.pod(-4);
+    for (const auto& w : morris_walls) {
+      for (auto v : w.voxels) f.pod(v);
+      f.pod(-1);
+      f.pod(w.surface.point);
+      f.pod(w.surface.inward_normal);
+      f.pod(w.surface.radius);
     }
   }
   return f.h;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "sadr/common/status.hpp"
+#include "sadr/ssa/morris_walls.hpp"
 
 namespace sadr::ssa {
 
@@ -69,7 +70,20 @@ bool RdmeState::update_graph(const ParticleState& particles) {
   for (std::size_t k = 0; k < model_.free_walls.size(); ++k) {
     check_walls("free_walls", k, model_.free_walls[k].voxels);
   }
+  for (std::size_t k = 0; k < model_.morris_walls.size(); ++k) {
+    for (const std::uint32_t x : model_.morris_walls[k].voxels) {
+      if (x >= particles.size()) {
+        throw InvalidArgument("morris_walls[" + std::to_string(k) + "].voxels contains " +
+                                  std::to_string(x) + " (allowed: 0.." +
+                                  std::to_string(static_cast<long>(particles.size()) - 1) + ")",
+                              {{"field", "morris_walls.voxels"}, {"value", std::to_string(x)}});
+      }
+    }
+  }
   builder_.build(graph_, model_, particles);  // validates before writing
+  if (!model_.morris_walls.empty()) {
+    apply_morris_walls(graph_, model_, particles, assign_morris_walls(model_, graph_));
+  }
   // The external laws' inputs survive a rebuild (zeros, t = 0 until the first set_inputs).
   const double input_time = table_.input_time();
   std::vector<double> frozen = table_.frozen();

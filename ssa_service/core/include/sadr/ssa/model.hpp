@@ -19,6 +19,7 @@
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/rate_law.hpp"
+#include "sadr/common/wall_surface.hpp"
 
 namespace sadr::ssa {
 
@@ -92,6 +93,20 @@ struct FreeWall {
   std::vector<std::uint32_t> voxels;  ///< wall particles; empty = every wall particle
 };
 
+/// Morris, Fox & Zhu (1997) extrapolated Dirichlet walls (docs/method.md section 4): the wall
+/// particles `voxels` lie behind `surface`, and the reservoirs' held concentration sits on that
+/// surface rather than on the particles. At every graph build the edges between a non-wall voxel
+/// i and such a wall voxel j are scaled, in both directions, by beta_ij = morris_beta(d_j, d_i, h)
+/// (common/wall_surface.hpp; d_j the depth of j behind the surface, d_i the distance of i in
+/// front of it), so the mean flux between them is beta_ij (k_ji X_j - k_ij X_i), the SDPD Morris
+/// term in expectation. Only reservoir species use those edges (no-flux species do not see the
+/// walls); not together with free_walls (validate() refuses it). A wall voxel belongs to
+/// the first listed MorrisWall that lists it; listed voxels that are not walls are ignored.
+struct MorrisWall {
+  std::vector<std::uint32_t> voxels;  ///< wall particles (non-empty)
+  WallSurface surface;
+};
+
 /// Neumann source: a constant inward flux through the walls, realised as a
 /// zeroth-order source in the first layer of fluid particles next to a wall.
 struct NeumannSource {
@@ -109,7 +124,8 @@ struct Model {
   JumpConvention convention = JumpConvention::kVolume;
   std::vector<WallReservoir> reservoirs;
   std::vector<NeumannSource> neumann;
-  std::vector<FreeWall> free_walls;  ///< walls that are ordinary voxels for a species
+  std::vector<FreeWall> free_walls;      ///< walls that are ordinary voxels for a species
+  std::vector<MorrisWall> morris_walls;  ///< extrapolated Dirichlet walls (empty: off)
   /// Hybrid reactions (docs/method.md section 4c): deterministic species the rate
   /// laws read, not simulated; their concentrations are inputs held constant over
   /// each advance (NsmSolver::set_inputs). Law species index ns + k is frozen_species[k].
