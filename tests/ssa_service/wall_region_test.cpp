@@ -79,5 +79,30 @@ TEST(SsaWallRegion, ADirichletRegionOfFluidParticlesOnlyIsRefused) {
   }
 }
 
+// SsaModel.wall_planes (sent by the orchestrator with fluid.wall_model morris) become the core's
+// Morris walls: the region's particles and the surface; an unknown region is refused.
+TEST(SsaWallRegion, WallPlanesBecomeMorrisWalls) {
+  v1::SsaRequest r = init_request({0});
+  auto* plane = r.mutable_init()->mutable_model()->add_wall_planes();
+  plane->set_region("left");
+  for (double x : {0.75, 0.0, 0.0}) plane->add_point(x);
+  for (double n : {1.0, 0.0, 0.0}) plane->add_normal(n);
+  std::vector<std::string> names;
+  const Model m = model_from_proto(r.init().model(), 4, names);
+  ASSERT_EQ(m.morris_walls.size(), 1U);
+  EXPECT_EQ(m.morris_walls[0].voxels, (std::vector<std::uint32_t>{0}));
+  EXPECT_EQ(m.morris_walls[0].surface.point[0], 0.75);
+  EXPECT_EQ(m.morris_walls[0].surface.inward_normal[0], 1.0);
+  EXPECT_EQ(m.morris_walls[0].surface.radius, 0.0);
+  plane->set_region("nowhere");
+  try {
+    (void)model_from_proto(r.init().model(), 4, names);
+    FAIL() << "accepted a wall plane on an unknown region";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("init.model.wall_planes[0]"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace sadr::ssa

@@ -79,6 +79,22 @@ void add_regions(const Scene& scene, const std::set<std::string>& used, Repeated
   }
 }
 
+/// fluid.wall_planes (the Morris wall surfaces) into `out`, their regions into `regions_used`.
+void add_wall_planes(const Scene& scene,
+                     google::protobuf::RepeatedPtrField<common::v1::WallPlane>& out,
+                     std::set<std::string>& regions_used) {
+  for (const auto& p : scene.fluid.wall_planes) {
+    auto* w = out.Add();
+    w->set_region(p.region);
+    for (int a = 0; a < 3; ++a) {
+      w->add_point(p.point[a]);
+      if (p.radius == 0) w->add_normal(p.normal[a]);
+    }
+    w->set_radius(p.radius);
+    regions_used.insert(p.region);
+  }
+}
+
 /// The inflow buffers of species `s` as boxes (a channel is unbounded across its axis),
 /// for ssa::v1::SsaModel (stochastic species) or fluid::v1::FluidModel (deterministic).
 template <class ServiceModel>
@@ -169,16 +185,7 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
   for (const auto& r : scene.reactions) {
     if (!r.stochastic) to_proto(r, *m->add_reactions(), regions_used);
   }
-  for (const auto& p : f.wall_planes) {
-    auto* w = m->add_wall_planes();
-    w->set_region(p.region);
-    for (int a = 0; a < 3; ++a) {
-      w->add_point(p.point[a]);
-      if (p.radius == 0) w->add_normal(p.normal[a]);
-    }
-    w->set_radius(p.radius);
-    regions_used.insert(p.region);
-  }
+  add_wall_planes(scene, *m->mutable_wall_planes(), regions_used);
   add_regions(scene, regions_used, m->mutable_regions());
   wire::to_proto(scene.particles, *init.mutable_particles(), /*with_velocities=*/true);
   return init;
@@ -210,6 +217,17 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
     if (r.stochastic) to_proto(r, *m->add_reactions(), regions_used);
   }
   for (const auto& s : plan.frozen_species) m->add_frozen_species(s);
+  // Morris walls (fluid.wall_model morris): the stochastic species' Dirichlet reservoirs hold
+  // their values on the same wall surfaces as the fluid's deterministic species.
+  bool ssa_dirichlet = false;
+  for (const auto& s : scene.species) {
+    if (!s.stochastic || !contains(plan.ssa_species, s.name)) continue;
+    for (const auto& b : s.boundaries)
+      ssa_dirichlet |= b.condition == BoundaryCondition::kDirichlet;
+  }
+  if (scene.fluid.wall_model == "morris" && ssa_dirichlet) {
+    add_wall_planes(scene, *m->mutable_wall_planes(), regions_used);
+  }
   add_regions(scene, regions_used, m->mutable_regions());
   wire::to_proto(particles, *init.mutable_particles(), /*with_velocities=*/false);
   return init;

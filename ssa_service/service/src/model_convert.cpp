@@ -113,6 +113,12 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
     wire::boundary_flux_sites(rx, here, out.voxels, out.areas);
     m.reactions.push_back(std::move(out));
   }
+  for (int w = 0; w < in.wall_planes_size(); ++w) {
+    const auto& p = in.wall_planes(w);
+    const std::string here = where + ".wall_planes[" + std::to_string(w) + "]";
+    m.morris_walls.push_back(
+        MorrisWall{wire::region_particles(regions, p.region(), here), wire::from_proto(p, here)});
+  }
   m.frozen_species.assign(in.frozen_species().begin(), in.frozen_species().end());
   m.validate();
   return m;
