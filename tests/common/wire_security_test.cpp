@@ -187,6 +187,39 @@ TEST(Curve, OnlyAuthorizedClientsGetInAndOthersAreToldAtOnce) {
   EXPECT_EQ(rep.blob(), "state");
 }
 
+TEST(Curve, ARefusedClientIsToldAtOnceOnEveryCallAndItsRequestsNeverBlock) {
+  // libzmq 4.3.4 does not reconnect after a refused security handshake, so the
+  // REQ socket is left without a pipe: a blocking send after the refusal
+  // waited forever (the ServiceAuth flake: the refusal arrived before the
+  // request was sent). Every call of a refused client must end with
+  // kUnavailable and the reason, the first and the later ones alike; with a
+  // 60 s timeout, kUnavailable means the refusal and not a clock ended it.
+  const CurveSetup keys;
+  Served s(keys.options());
+  const std::string ep = s.endpoint();
+  auto refused_three_times = [](RpcClient& c, const std::string& reason) {
+    for (int call = 0; call < 3; ++call) {
+      const auto [code, why] = try_handshake(c);
+      EXPECT_EQ(code, StatusCode::kUnavailable) << "call " << call << ": " << why;
+      EXPECT_NE(why.find(reason), std::string::npos) << "call " << call << ": " << why;
+      std::this_thread::sleep_for(50ms);  // the refusal is surely in before the next call
+    }
+  };
+  RpcClient none(ep, "fluid_service", 60s);  // no keys: a protocol-level refusal
+  refused_three_times(none, "security handshake failed (we offered NULL)");
+  keys.use(ep, make_curve_keypair(), keys.server.public_key);  // an unknown key: ZAP refuses
+  RpcClient stranger(ep, "fluid_service", 60s);
+  set_client_credentials(ep, {});
+  refused_three_times(stranger, "refused our credentials (CURVE, ZAP status 400)");
+  common::v1::Snapshot req, rep;  // a plain call too, not only the handshake
+  try {
+    stranger.call(req, rep);
+    FAIL() << "a refused client's call returned";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), StatusCode::kUnavailable) << e.what();
+  }
+}
+
 TEST(Curve, AClientWithoutTheRunSecretIsToldAtOnce) {
   ServerOptions o;
   o.endpoint = "tcp://127.0.0.1:*";

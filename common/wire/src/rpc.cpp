@@ -393,27 +393,52 @@ RpcClient::~RpcClient() {
 void RpcClient::exchange(std::string header, std::string body) {
   auto& s = impl_->socket;
   (void)impl_->drain_events();  // a disconnect before this request does not concern it
-  std::vector<zmq::message_t> out;
-  out.emplace_back(header.data(), header.size());
-  append_body(out, std::move(body));
-  zmq::send_multipart(s, out);
-  zmq::pollitem_t items[] = {{s.handle(), 0, ZMQ_POLLIN, 0},
-                             {impl_->monitor.handle(), 0, ZMQ_POLLIN, 0}};
   const auto deadline = std::chrono::steady_clock::now() + timeout_;
   auto fail = [&](const std::string& why) {
     throw Error(StatusCode::kUnavailable, peer_name_ + " at " + endpoint_ + ": " + why);
   };
-  for (;;) {
-    if (!impl_->refused.empty()) fail(impl_->refused);
+  auto time_left = [&](const char* what) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
       throw Error(StatusCode::kDeadlineExceeded,
-                  peer_name_ + " at " + endpoint_ + " did not answer within " +
+                  peer_name_ + " at " + endpoint_ + " did not " + what + " within " +
                       std::to_string(timeout_.count()) + " ms (is it running?)");
     }
+    return std::min(left, std::chrono::milliseconds(200));
+  };
+  // libzmq (4.3.4) does not reconnect after the peer refused the security
+  // handshake: the REQ socket then has no pipe, and a blocking send would
+  // wait forever. So a known refusal fails before sending, and the send is
+  // non-blocking, retried until the deadline while the monitor is watched.
+  if (!impl_->refused.empty()) fail(impl_->refused);
+  std::vector<zmq::message_t> out;
+  out.emplace_back(header.data(), header.size());
+  append_body(out, std::move(body));
+  zmq::pollitem_t items[] = {{s.handle(), 0, ZMQ_POLLIN, 0},
+                             {impl_->monitor.handle(), 0, ZMQ_POLLIN, 0}};
+  for (;;) {
     try {
-      zmq::poll(items, 2, std::min(left, std::chrono::milliseconds(200)));
+      if (zmq::send_multipart(s, out, zmq::send_flags::dontwait)) break;
+    } catch (const zmq::error_t& e) {
+      if (e.num() != EINTR) throw;
+    }
+    items[0].events = ZMQ_POLLOUT;
+    try {
+      zmq::poll(items, 2, time_left("accept the request"));
+    } catch (const zmq::error_t& e) {
+      if (e.num() != EINTR) throw;
+    }
+    (void)impl_->drain_events();  // nothing was sent yet: a disconnect loses no request
+    if (!impl_->refused.empty()) fail(impl_->refused);
+    if (liveness_) liveness_();
+  }
+  items[0].events = ZMQ_POLLIN;
+  for (;;) {
+    if (!impl_->refused.empty()) fail(impl_->refused);
+    const auto wait = time_left("answer");
+    try {
+      zmq::poll(items, 2, wait);
     } catch (const zmq::error_t& e) {
       if (e.num() == EINTR) continue;
       throw;
