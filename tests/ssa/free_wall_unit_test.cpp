@@ -15,14 +15,7 @@
 namespace sadr::ssa {
 namespace {
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InvalidArgument& e) {
-    return e.what();
-  }
-  return "<no InvalidArgument thrown>";
-}
+using testing::message_of;
 
 // 1D chain of 6 (dx = 1, h = 1.5: nearest neighbours only), walls at 0 and 5.
 ParticleState chain6() {

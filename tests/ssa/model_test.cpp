@@ -16,14 +16,7 @@
 namespace sadr::ssa {
 namespace {
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InvalidArgument& e) {
-    return e.what();
-  }
-  return "<no InvalidArgument thrown>";
-}
+using testing::message_of;
 
 Model good_model() {
   Model m = testing::diffusion_model(testing::make_box(2, 4.0, false), 1.5, 1.0);

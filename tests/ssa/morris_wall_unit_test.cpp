@@ -15,14 +15,7 @@
 namespace sadr::ssa {
 namespace {
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InvalidArgument& e) {
-    return e.what();
-  }
-  return "<no InvalidArgument thrown>";
-}
+using testing::message_of;
 
 TEST(WallSurface, PlaneAndCircleDistancesAndDepths) {
   const WallSurface plane{{0.75, 0, 0}, {1, 0, 0}, 0.0};

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <random>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/common/status.hpp"
 #include "sadr/ssa/model.hpp"
 
 namespace sadr::ssa::testing {
@@ -138,6 +140,17 @@ inline std::vector<std::map<std::string, std::string>> read_csv(const std::strin
     rows.push_back(row);
   }
   return rows;
+}
+
+/// The message of the InvalidArgument that `f` throws, or a marker that fails
+/// every find() the tests make when it throws none.
+inline std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InvalidArgument& e) {
+    return e.what();
+  }
+  return "<no InvalidArgument thrown>";
 }
 
 /// Path of a file in tests/data/refs (SADR_REFS from ctest, else the source tree).
