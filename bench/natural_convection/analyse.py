@@ -96,18 +96,27 @@ SERIES = (("kinetic_energy", lambda m: m["kinetic_energy"]),
 
 def rates(times, ms, window):
     """Relative rates of change |slope| / |mean| over the trailing window, per quantity and frame
-    (NaN where the window holds fewer than 3 frames or does not reach back W)."""
-    out = {}
+    (NaN where the window holds fewer than 3 frames or does not reach back W), and the standard
+    error of each slope, relative to the same mean (from the scatter about the fitted line; NaN
+    with 3 frames): a rate whose standard error is near the threshold cannot show it is below."""
+    out, se = {}, {}
     for name, f in SERIES:
         x = np.array([f(m) for m in ms])
         r = np.full(len(times), np.nan)
+        e = np.full(len(times), np.nan)
         for i, t in enumerate(times):
             sel = (times >= t - window - 1e-9) & (times <= t + 1e-9)
             if sel.sum() >= 3 and times[sel][0] <= t - window + 1e-9:
-                slope = np.polyfit(times[sel], x[sel], 1)[0]
-                r[i] = abs(slope) / max(abs(np.mean(x[sel])), 1e-300)
+                ts, xs = times[sel], x[sel]
+                slope, icpt = np.polyfit(ts, xs, 1)
+                mean = max(abs(np.mean(xs)), 1e-300)
+                r[i] = abs(slope) / mean
+                if len(ts) > 3:
+                    resid = xs - (slope * ts + icpt)
+                    e[i] = math.sqrt(np.sum(resid ** 2) / (len(ts) - 2) / np.sum((ts - ts.mean()) ** 2)) / mean
         out[name] = r
-    return out
+        se[name] = e
+    return out, se
 
 
 def steady_time(times, rate, threshold):
@@ -126,8 +135,8 @@ def analyse(runs, ra, h, dx, molecules, threshold, rate_window, window, start=No
     for run in runs:
         ms = measure_run(run, case, h, dx, molecules)
         times = np.array([m["time"] for m in ms])
-        rate = rates(times, ms, rate_window)
-        per_run.append({"run": run, "ms": ms, "times": times, "rate": rate,
+        rate, rate_se = rates(times, ms, rate_window)
+        per_run.append({"run": run, "ms": ms, "times": times, "rate": rate, "rate_se": rate_se,
                         "t_steady": steady_time(times, rate, threshold)})
     result = {"Ra": case.ra, "runs": runs, "molecules": molecules, "threshold_per_time": threshold,
               "rate_window": rate_window, "t_end": [float(r["times"][-1]) for r in per_run],
@@ -135,7 +144,25 @@ def analyse(runs, ra, h, dx, molecules, threshold, rate_window, window, start=No
               "series": [{"time": r["times"].tolist(),
                           **{n: [f(m) for m in r["ms"]] for n, f in SERIES},
                           **{"rate_" + n: [None if not np.isfinite(v) else float(v) for v in r["rate"][n]]
+                             for n, _ in SERIES},
+                          **{"rate_se_" + n: [None if not np.isfinite(v) else float(v) for v in r["rate_se"][n]]
                              for n, _ in SERIES}} for r in per_run]}
+    # Can the test resolve the threshold? The median standard error of the rates over the last
+    # half of each run, per quantity: above a third of the threshold, a run with constant means
+    # fails the test in some window by chance (docs/natural-convection.md, Ra = 1e6).
+    result["rate_se_last_half"] = {}
+    for r in per_run:
+        half = r["times"] >= 0.5 * r["times"][-1]
+        med = {n: (float(np.nanmedian(v[half])) if np.isfinite(v[half]).any() else None)
+               for n, v in r["rate_se"].items()}
+        result["rate_se_last_half"][r["run"]] = med
+        worst = max((v for v in med.values() if v is not None), default=None)
+        if worst is not None and worst > threshold / 3:
+            p_fail = math.erfc(threshold / worst / math.sqrt(2))  # 2 (1 - Phi(threshold / SE))
+            print("%s: note: the rates' standard error (median over the last half, up to %.1e per unit time) "
+                  "is above a third of the threshold %g: a run without drift fails one window's test with "
+                  "probability %.2g; more frames (output.every) or a longer --rate-window resolve it"
+                  % (r["run"], worst, threshold, p_fail), file=sys.stderr)
     result["last_rates"] = {r["run"]: {n: (float(v[np.isfinite(v)][-1]) if np.isfinite(v).any() else None)
                                        for n, v in r["rate"].items()} for r in per_run}
     result["steady"] = all(t is not None for t in result["t_steady"])
@@ -278,7 +305,9 @@ def main():
             rr = ["%10.2e" % s["rate_" + n][k] if s["rate_" + n][k] is not None else "%10s" % "-" for n, _ in SERIES]
             print("  %6.1f %12.5e %10.4f %10.4f %s" % (t, s["kinetic_energy"][k], s["Nu_near_cylinder"][k],
                                                      s["Nu_enclosure"][k], " ".join(rr)))
-        print("  t_steady = %s" % res["t_steady"][i])
+        print("  t_steady = %s; rates' standard error, median over the last half: %s" % (
+            res["t_steady"][i], ", ".join("%s %s" % (n, "-" if v is None else "%.1e" % v)
+                                          for n, v in res["rate_se_last_half"][res["runs"][i]].items())))
     if "score" in res:
         print("window %g-%g, %d frames from %d realization(s)" % (res["window"][0], res["window"][1],
                                                                   res["frames_averaged"], res["realizations"]))

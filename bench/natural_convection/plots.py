@@ -82,7 +82,7 @@ def series(analyses, out):
             worst = [max([v for v in vals if v is not None] or [np.nan])
                      for vals in zip(*[s["rate_" + n] for n in ("kinetic_energy", "Nu_near_cylinder",
                                                                 "Nu_enclosure")])]
-            ax[2].semilogy(t, worst, color=c, label=label(a["Ra"]))
+            ax[2].semilogy(t, worst, color=c, label="%s (over %g)" % (label(a["Ra"]), a["rate_window"]))
             if ts is not None:
                 for k in range(3):
                     ax[k].axvline(ts, color=c, lw=0.6, ls="--")
@@ -90,7 +90,7 @@ def series(analyses, out):
     ax[2].axhline(analyses[0]["threshold_per_time"], color="k", lw=0.8)
     ax[0].set_ylabel("kinetic energy of the fluid")
     ax[1].set_ylabel("Nu_half (line: continuum)")
-    ax[2].set_ylabel("largest |dX/dt| / |X| over %g" % analyses[0]["rate_window"])
+    ax[2].set_ylabel("largest |dX/dt| / |X| (slope window in the legend)")
     for k in range(3):
         ax[k].set_xlabel("t")
         ax[k].grid(alpha=0.3)
