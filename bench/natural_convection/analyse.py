@@ -278,6 +278,17 @@ def against(runs, det_run, ra, h, dx, molecules, start):
     return out
 
 
+def load_result(arg):
+    """An analyse.py --json output named by "PATH[=LABEL]" (the tables' argument form): (result, LABEL).
+    Exits with a message when nothing was averaged (not steady and no --from)."""
+    path, _, label = arg.partition("=")
+    with open(path) as f:
+        a = json.load(f)
+    if "score" not in a:
+        sys.exit("%s: nothing averaged (not steady by the criterion and no --from)" % path)
+    return a, label
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+")

@@ -11,9 +11,10 @@ Nusselt number's relative error, and the observed order ln(e_coarse / e_fine) / 
 dx_fine) between successive resolutions (the metric's 1/n makes the 399-point errors comparable
 between resolutions: the points are the reference's, not the lattice's).
 """
-import json
 import math
 import sys
+
+from analyse import load_result
 
 COLS = (("theta_err_ref", "theta vs continuum (399 pts)", "%.3e"),
         ("theta_maxabs_ref", "theta max abs vs continuum", "%.4f"),
@@ -27,11 +28,7 @@ COLS = (("theta_err_ref", "theta vs continuum (399 pts)", "%.3e"),
 def main():
     rows = []
     for arg in sys.argv[1:]:
-        p, _, n = arg.partition("=")
-        with open(p) as f:
-            a = json.load(f)
-        if "score" not in a:
-            sys.exit("%s: nothing averaged (no --from and not steady)" % p)
+        a, n = load_result(arg)
         s = dict(a["score"])
         s["nu_rel"] = 100 * (s["Nu_half"] / s["Nu_half_reference"] - 1)
         rows.append((int(n), a, s))

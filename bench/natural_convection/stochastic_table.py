@@ -11,8 +11,9 @@ frames, divided by sqrt(frames): analyse.py's noise_metric_average), the rms dif
 deterministic run at equal frame times where analyse.py was given --against, and Nu_half with the
 standard deviation of one frame's Nu.
 """
-import json
 import sys
+
+from analyse import load_result
 
 
 def main():
@@ -23,16 +24,12 @@ def main():
           "| Nu_half (sd of a frame) |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for arg in sys.argv[1:]:
-        path, _, label = arg.partition("=")
-        with open(path) as f:
-            a = json.load(f)
-        if "score" not in a:
-            sys.exit("%s: nothing averaged (not steady and no --from)" % path)
+        a, label = load_result(arg)
         s = a["score"]
         frames = a["frames_averaged"] // max(a["realizations"], 1)
         diff = a.get("against", {}).get("theta_rms_diff")
         print("| %s | %s | %d x %d (t = %g-%g) | %.3e | %.3e | %.1e | %.3f | %.3f | %.3f | %s | %.3f (%.3f) |" % (
-            label or path, "%g" % a["molecules"] if a["molecules"] else "deterministic", a["realizations"], frames,
+            label or arg, "%g" % a["molecules"] if a["molecules"] else "deterministic", a["realizations"], frames,
             a["window"][0], a["window"][1], s["theta_err_digitised"], s["theta_err_ref_at_digitised_x"],
             a["theta_noise_metric_average"], s["vstar_err_digitised"], s["vstar_err_ref_at_digitised_x"],
             a["vstar_noise_metric_average"], "-" if diff is None else "%.4f" % diff, s["Nu_half"],
