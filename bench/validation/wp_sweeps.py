@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""The markdown of the sweep-based sections of docs/validation.md (report.py):
+"""The markdown of the sweep-based sections of docs/validation-report.md (report.py):
 Poiseuille start-up against resolution and sound speed, the coupled tracer
 against R, resolution and tau, and where tau matters in Table 1."""
 import math

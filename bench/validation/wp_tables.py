@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""The markdown of docs/validation.md, from the data report.py collected."""
+"""The markdown of docs/validation-report.md, from the data report.py collected."""
 import re
 
 import table1_floor
