@@ -24,6 +24,7 @@ PACKAGES=(
   python3-distributed                       # the Dask example (python/sadr/dask_runner.py)
   python3-nbconvert python3-ipykernel       # the notebook examples/notebooks/, executed in the tests
   clang-format                              # .ci/run fails on a formatting difference
+  mkdocs                                    # the docs site (mkdocs.yml), built --strict by the tests (tests/docs)
 )
 
 missing=()
