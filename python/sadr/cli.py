@@ -15,11 +15,12 @@ from pathlib import Path
 
 class SadrError(RuntimeError):
     """`sadr` exited with a non-zero code; ``message`` is what it printed on
-    stderr (its error lines), ``code`` the exit code, ``args_`` the command."""
+    stderr (its error lines), ``code`` the exit code, ``command`` the command
+    and ``stderr`` all it printed there."""
 
-    code = None
+    code: int | None = None
 
-    def __init__(self, message, code, command, stderr=""):
+    def __init__(self, message: str, code: int | None, command, stderr: str = ""):
         super().__init__(message)
         self.message, self.code, self.command, self.stderr = message, code, command, stderr
 
@@ -48,8 +49,21 @@ class Interrupted(SadrError):
     """Exit 130: SIGINT/SIGTERM (a checkpoint was written)."""
 
 
-EXIT_CODES = {1: InvalidInput, 2: UsageError, 3: ServiceFailure, 4: NumericalFailure,
-              5: IoFailure, 130: Interrupted}
+EXIT_CODES: dict[int, type[SadrError]] = {
+    1: InvalidInput, 2: UsageError, 3: ServiceFailure, 4: NumericalFailure, 5: IoFailure,
+    130: Interrupted}
+"""The CLI's exit codes (the ExitCode enum of orchestrator/app/commands.hpp;
+tests/python/test_rules.py compares them) and the exception of each. The one
+table in this package: every failing `sadr` call raises through error_for()."""
+
+
+def error_for(returncode: int, stderr: str, command, what: str = "sadr") -> SadrError:
+    """The exception for a `sadr` process that exited with ``returncode``:
+    the SadrError subclass of the code (SadrError for an unknown code), its
+    message "WHAT exited with CODE: <the CLI's error lines>"."""
+    cls = EXIT_CODES.get(returncode, SadrError)
+    return cls(f"{what} exited with {returncode}: {_message(stderr or '')}", returncode,
+               command, stderr or "")
 
 
 def find_sadr() -> Path:
@@ -82,7 +96,8 @@ def _message(stderr: str) -> str:
     return "\n".join(lines[first:] if first is not None else lines[-20:]) or "(no message on stderr)"
 
 
-def run_cli(args, *, check: bool = True, capture: bool = True, cwd=None, env=None):
+def run_cli(args, *, check: bool = True, capture: bool = True, cwd=None,
+            env=None) -> subprocess.CompletedProcess:
     """Runs ``sadr ARGS...``; returns the CompletedProcess (text stdout/stderr
     when ``capture``). A non-zero exit raises the SadrError subclass of its
     code, carrying the CLI's message."""
@@ -90,7 +105,5 @@ def run_cli(args, *, check: bool = True, capture: bool = True, cwd=None, env=Non
     kwargs = {"stdout": subprocess.PIPE, "stderr": subprocess.PIPE} if capture else {}
     proc = subprocess.run(command, text=True, cwd=cwd, env=env, **kwargs)
     if check and proc.returncode != 0:
-        cls = EXIT_CODES.get(proc.returncode, SadrError)
-        err = proc.stderr or ""
-        raise cls(f"sadr exited with {proc.returncode}: {_message(err)}", proc.returncode, command, err)
+        raise error_for(proc.returncode, proc.stderr, command)
     return proc

@@ -22,9 +22,13 @@ from __future__ import annotations
 import os
 import subprocess
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from .cli import EXIT_CODES, SadrError, _message, find_sadr, run_cli
+from .cli import error_for, find_sadr, run_cli
 from .runs import Ensemble
+
+if TYPE_CHECKING:
+    from .sweeps import Sweep
 
 
 def realization_command(scene, output, sadr_bin=None) -> list:
@@ -44,8 +48,8 @@ def realization_env(index: int, threads: int = 1) -> dict:
     return env
 
 
-def run_ensemble(scene, output, realizations: int, client, *, sadr_bin=None, threads: int = 1,
-                 combine: bool = True) -> Ensemble:
+def run_ensemble(scene: str | os.PathLike, output: str | os.PathLike, realizations: int, client, *,
+                 sadr_bin=None, threads: int = 1, combine: bool = True) -> Ensemble:
     """Runs realizations 0..R-1 of ``scene`` into ``output`` as Dask tasks on
     ``client``, then (``combine``) ``sadr ensemble output``. A failed task raises
     the SadrError of its exit code naming the realization."""
@@ -58,15 +62,14 @@ def run_ensemble(scene, output, realizations: int, client, *, sadr_bin=None, thr
                for i in range(realizations)]
     for i, proc in enumerate(client.gather(futures)):
         if proc.returncode != 0:
-            cls = EXIT_CODES.get(proc.returncode, SadrError)
-            raise cls(f"realization {i}: sadr exited with {proc.returncode}: {_message(proc.stderr)}",
-                      proc.returncode, cmd, proc.stderr)
+            raise error_for(proc.returncode, proc.stderr, cmd, f"realization {i}: sadr")
     if combine:
         run_cli(["ensemble", output])
     return Ensemble(output)
 
 
-def run_sweep(sweep_file, output, client, *, sadr_bin=None, threads: int = 1):
+def run_sweep(sweep_file: str | os.PathLike, output: str | os.PathLike, client, *, sadr_bin=None,
+              threads: int = 1) -> Sweep:
     """A `sadr sweep` whose runs are Dask tasks: prepares ``output`` (``sadr
     sweep FILE -o OUT --aggregate-only`` writes sweep.json with every run
     pending), runs each unfinished run as ``sadr sweep-task OUT -q`` with its
@@ -81,9 +84,7 @@ def run_sweep(sweep_file, output, client, *, sadr_bin=None, threads: int = 1):
         proc = run_cli(["sweep", Path(sweep_file).resolve(), "-o", output, "--aggregate-only", "-q"],
                        check=False)
         if proc.returncode not in (0, 3) or not (output / "sweep.json").is_file():
-            cls = EXIT_CODES.get(proc.returncode, SadrError)
-            raise cls(f"sadr sweep exited with {proc.returncode}: {_message(proc.stderr)}",
-                      proc.returncode, proc.args, proc.stderr)
+            raise error_for(proc.returncode, proc.stderr, proc.args, "sadr sweep")
     pending = [r["index"] for r in Sweep(output).manifest["runs"] if r["state"] != "ok"]
     cmd = [sadr_bin, "sweep-task", str(output), "-q"]
     futures = [client.submit(subprocess.run, cmd, env=realization_env(i, threads),
@@ -94,7 +95,6 @@ def run_sweep(sweep_file, output, client, *, sadr_bin=None, threads: int = 1):
     run_cli(["sweep", "--resume", output, "--aggregate-only", "-q"], check=not failed)
     if failed:
         i, proc = failed[0]
-        cls = EXIT_CODES.get(proc.returncode, SadrError)
-        raise cls(f"{len(failed)} sweep run(s) failed; run {i}: sadr exited with {proc.returncode}: "
-                  f"{_message(proc.stderr)}", proc.returncode, cmd, proc.stderr)
+        raise error_for(proc.returncode, proc.stderr, cmd,
+                        f"{len(failed)} sweep run(s) failed; run {i}: sadr")
     return Sweep(output)

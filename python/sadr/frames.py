@@ -22,8 +22,12 @@ from __future__ import annotations
 import dataclasses
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 KIND_NAMES = ("fluid", "wall", "inlet", "outlet")
 """Particle kinds by their number in the ``kind`` column / array."""
@@ -48,6 +52,7 @@ class Frame:
     mass: np.ndarray  # (N,) float64
     species: dict  # name -> (N,) float64 (copy numbers or concentrations)
     path: Path | None = None
+    box_extent: float | None = None  # largest box length of the run's scene, when known (regions)
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -84,7 +89,7 @@ class Frame:
         raise KeyError(f"no field '{name}' in frame (species: {', '.join(self.species) or 'none'}; "
                        "also speed, density, mass, volume, kind, id, x, y, z, vx, vy, vz)")
 
-    def to_pandas(self):
+    def to_pandas(self) -> pd.DataFrame:
         """The frame as a pandas DataFrame with the CSV frame's columns."""
         import pandas as pd
 

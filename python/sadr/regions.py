@@ -2,12 +2,38 @@
 """Regions that select particles of a frame: a box, a disk (a cylinder or
 sphere in 3D), particle kinds, and their intersections (``a & b``) and
 unions (``a | b``). A region is evaluated on each frame's own positions, so
-it follows moving particles."""
+it follows moving particles.
+
+Boundaries are inclusive within the tolerance of the scene loader
+(``Region::contains`` and ``SceneContext::tolerance`` in orchestrator/core):
+an absolute tolerance of 1e-9 times the largest box length, so that a
+particle on a face is inside in Python as in the product. The box is the
+run's (``Frame.box_extent``, set by sadr.Run from its scene); a frame read on
+its own uses the extent of its particles instead.
+"""
 from __future__ import annotations
 
 import numpy as np
 
 from .frames import Frame, _kind_code
+
+RELATIVE_TOLERANCE = 1e-9
+"""Region boundaries are inclusive within this fraction of the largest box length."""
+
+
+def boundary_tolerance(extent: float) -> float:
+    """The absolute boundary tolerance [length] for a box whose largest length is ``extent``."""
+    return RELATIVE_TOLERANCE * max(float(extent), 1e-300)
+
+
+def frame_tolerance(frame: Frame) -> float:
+    """The boundary tolerance for ``frame``: from its run's box when known
+    (``frame.box_extent``), else from the extent of its particles."""
+    extent = getattr(frame, "box_extent", None)
+    if extent is None:
+        p = frame.positions
+        extent = float(np.max(np.ptp(p, axis=0))) if len(p) else 0.0
+    return boundary_tolerance(extent)
 
 
 class Region:
@@ -16,10 +42,10 @@ class Region:
     def mask(self, frame: Frame) -> np.ndarray:  # pragma: no cover - interface
         raise NotImplementedError
 
-    def __and__(self, other):
+    def __and__(self, other: Region) -> Region:
         return _Combined(self, other, np.logical_and, "&")
 
-    def __or__(self, other):
+    def __or__(self, other: Region) -> Region:
         return _Combined(self, other, np.logical_or, "|")
 
 
@@ -27,7 +53,7 @@ class _Combined(Region):
     def __init__(self, a, b, op, symbol):
         self.a, self.b, self.op, self.symbol = a, b, op, symbol
 
-    def mask(self, frame):
+    def mask(self, frame: Frame) -> np.ndarray:
         return self.op(self.a.mask(frame), self.b.mask(frame))
 
     def __repr__(self):
@@ -37,7 +63,7 @@ class _Combined(Region):
 class Everything(Region):
     """All particles."""
 
-    def mask(self, frame):
+    def mask(self, frame: Frame) -> np.ndarray:
         return np.ones(len(frame), dtype=bool)
 
     def __repr__(self):
@@ -55,10 +81,11 @@ class Box(Region):
         if np.any(self.lower > self.upper):
             raise ValueError(f"Box: lower {lower} > upper {upper} on some axis")
 
-    def mask(self, frame):
+    def mask(self, frame: Frame) -> np.ndarray:
         d = self.lower.size
+        tol = frame_tolerance(frame)
         p = frame.positions[:, :d]
-        return np.all((p >= self.lower) & (p <= self.upper), axis=1)
+        return np.all((p >= self.lower - tol) & (p <= self.upper + tol), axis=1)
 
     def __repr__(self):
         return f"Box({self.lower.tolist()}, {self.upper.tolist()})"
@@ -74,10 +101,10 @@ class Disk(Region):
         if not 1 <= self.center.size <= 3 or self.radius < 0:
             raise ValueError(f"Disk: center {center} (1-3 values) and radius {radius} >= 0")
 
-    def mask(self, frame):
+    def mask(self, frame: Frame) -> np.ndarray:
         d = self.center.size
-        r2 = np.sum((frame.positions[:, :d] - self.center) ** 2, axis=1)
-        return r2 <= self.radius**2
+        r = np.sqrt(np.sum((frame.positions[:, :d] - self.center) ** 2, axis=1))
+        return r <= self.radius + frame_tolerance(frame)
 
     def __repr__(self):
         return f"Disk({self.center.tolist()}, {self.radius})"
@@ -92,14 +119,14 @@ class Kinds(Region):
         self.codes = [_kind_code(k) for k in kinds]
         self.names = kinds
 
-    def mask(self, frame):
+    def mask(self, frame: Frame) -> np.ndarray:
         return np.isin(frame.kinds, self.codes)
 
     def __repr__(self):
         return "Kinds(" + ", ".join(repr(k) for k in self.names) + ")"
 
 
-def as_region(region) -> Region:
+def as_region(region: Region | str | None) -> Region:
     """None -> Everything(); a kind name -> Kinds(name); a Region unchanged."""
     if region is None:
         return Everything()

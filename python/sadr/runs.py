@@ -4,14 +4,23 @@ an ensemble (``realization_NNNN/`` folders + ``ensemble/``)."""
 from __future__ import annotations
 
 import json
+import os
 import re
+from collections.abc import Iterator
 from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+import yaml
 
-from .frames import read_ensemble_frame, read_frame, read_pvd
+from .frames import Frame, read_ensemble_frame, read_frame, read_pvd
 from .series import band, observe
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from .sweeps import Sweep
 
 _FRAME_NAME = re.compile(r"frame_(\d{6})\.(csv|vtu|vtp)$")
 
@@ -73,7 +82,7 @@ class Run:
     def __len__(self):
         return len(self.files)
 
-    def frame(self, k: int, format: str | None = None):
+    def frame(self, k: int, format: str | None = None) -> Frame:
         """Frame number k (0-based, negative from the end) as a sadr.Frame,
         from ``format`` ('csv', 'vtu', 'vtp'; default: csv if written, else VTK)."""
         files = self.files[k]
@@ -81,9 +90,38 @@ class Run:
             format = next(f for f in ("csv", "vtu", "vtp") if f in files)
         if format not in files:
             raise KeyError(f"{self.path}: frame {k} has no .{format} file (written: {', '.join(files)})")
-        return read_frame(files[format])
+        frame = read_frame(files[format])
+        frame.box_extent = self.box_extent
+        return frame
 
-    def frames(self, format: str | None = None):
+    @cached_property
+    def box_extent(self) -> float | None:
+        """The largest box length of the run's scene (run.json's scene_path,
+        with its overrides), which sets the boundary tolerance of regions
+        (sadr.regions); None when the scene file is not found."""
+        from .paths import PathError, get_path, load_yaml, set_path
+
+        name = self.manifest.get("scene_path")
+        if not name:
+            return None
+        candidates = [Path(name)] if Path(name).is_absolute() else [Path(name), self.path.parent / name]
+        for path in candidates:
+            if not path.is_file():
+                continue
+            try:
+                with open(path, encoding="utf-8") as f:
+                    data = load_yaml(f)
+                for text in self.manifest.get("overrides", []):
+                    key, _, value = text.partition("=")
+                    if key.startswith("box"):
+                        set_path(data, key, load_yaml(value))
+                lower, upper = get_path(data, "box.lower"), get_path(data, "box.upper")
+                return max(float(u) - float(lo) for lo, u in zip(lower, upper))
+            except (OSError, ValueError, TypeError, PathError, yaml.YAMLError):
+                return None
+        return None
+
+    def frames(self, format: str | None = None) -> Iterator[Frame]:
         """All frames, in order (a generator)."""
         for k in range(len(self)):
             yield self.frame(k, format)
@@ -92,7 +130,8 @@ class Run:
     def species(self) -> list:
         return list(self.frame(0).species) if len(self) else []
 
-    def series(self, species=None, region=None, stat: str = "total"):
+    def series(self, species: str | list[str] | None = None, region=None,
+               stat: str = "total") -> pd.DataFrame:
         """pandas DataFrame indexed by time, one column per species (default:
         all): the frame's ``stat`` ('total', 'mean', 'concentration') over
         ``region`` (a sadr.Box/Disk/Kinds, a kind name, or None for all)."""
@@ -147,14 +186,15 @@ class Ensemble:
         self.times  # noqa: B018 - checks that the realizations agree
         return np.array([[observe(f, species, region, stat) for f in r.frames()] for r in self.runs])
 
-    def series(self, species: str, region=None, stat: str = "total"):
+    def series(self, species: str, region=None, stat: str = "total") -> pd.DataFrame:
         """pandas DataFrame indexed by time, one column per realization."""
         import pandas as pd
 
         return pd.DataFrame(self.values(species, region, stat).T, columns=self.realizations,
                             index=pd.Index(self.times, name="time"))
 
-    def band(self, species: str, region=None, stat: str = "total", confidence: float = 0.95):
+    def band(self, species: str, region=None, stat: str = "total",
+             confidence: float = 0.95) -> pd.DataFrame:
         """Ensemble mean of the observable with its ``confidence`` band (Student t
         over the realizations): DataFrame indexed by time, columns n, mean, std,
         sem, lower, upper."""
@@ -162,17 +202,33 @@ class Ensemble:
 
     def mean_frame(self, k: int) -> dict:
         """The per-particle ensemble statistics sadr wrote for frame k
-        (``ensemble/frame_NNNNNN.csv``): {'time', 'ids', 'realizations',
-        species: (mean, variance)}."""
+        (``ensemble/frame_NNNNNN.csv``), as a dict of numpy arrays over its N
+        particles (in the file's order, by id):
+
+        * ``'time'``: the frame time (a float);
+        * ``'ids'``: (N,) uint64 particle ids;
+        * ``'realizations'``: (N,) how many realizations each row combines;
+        * ``'positions'``: (N, 3) float64, realization 0's positions at that
+          frame (particles that move differ between realizations; these are
+          where to draw the statistics, as the sweep aggregates do);
+        * ``'kinds'``: (N,) uint8, realization 0's kinds;
+        * one entry per species: a tuple (mean, variance) of (N,) arrays
+          (unbiased variance over the realizations)."""
         index = self.runs[0].indices[k]
         path = self.path / "ensemble" / f"frame_{index:06d}.csv"
         if not path.is_file():
             raise FileNotFoundError(f"{path}: missing (run `sadr ensemble {self.path}` to combine)")
         time, ids, count, stats = read_ensemble_frame(path)
-        return {"time": time, "ids": ids, "realizations": count, **stats}
+        first = self.runs[0].frame(k)
+        order = np.argsort(first.ids, kind="stable")
+        at = order[np.clip(np.searchsorted(first.ids, ids, sorter=order), 0, max(len(order) - 1, 0))]
+        if not np.array_equal(first.ids[at], ids):
+            raise ValueError(f"{path}: particle ids differ from {first.path}")
+        return {"time": time, "ids": ids, "realizations": count, "positions": first.positions[at],
+                "kinds": first.kinds[at], **stats}
 
 
-def open_output(path):
+def open_output(path: str | os.PathLike) -> Run | Ensemble | Sweep:
     """A sadr.Run, sadr.Ensemble or sadr.Sweep for an output directory, by its layout."""
     path = Path(path)
     from .sweeps import Sweep, is_sweep

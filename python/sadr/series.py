@@ -13,15 +13,21 @@ silent 0 for an average.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .regions import as_region
+from .frames import Frame
+from .regions import Region, as_region
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 STATS = ("total", "mean", "concentration")
 
 
-def observe(frame, species: str, region=None, stat: str = "total") -> float:
+def observe(frame: Frame, species: str, region: Region | str | None = None,
+            stat: str = "total") -> float:
     """One number for one frame (see module doc)."""
     if stat not in STATS:
         raise ValueError(f"stat '{stat}' (allowed: {', '.join(STATS)})")
@@ -37,18 +43,18 @@ def observe(frame, species: str, region=None, stat: str = "total") -> float:
 
 
 def t_quantile(p: float, dof: int) -> float:
-    """Student t quantile (scipy when present, else the normal quantile)."""
+    """The Student t quantile t_{p, dof} (scipy.stats.t.ppf), the one quantile
+    of every band and interval of this package. scipy is required: without
+    it this raises ImportError (no other distribution stands in)."""
     try:
         from scipy import stats
-
-        return float(stats.t.ppf(p, dof))
-    except ImportError:  # pragma: no cover - scipy is a listed dependency
-        from statistics import NormalDist
-
-        return NormalDist().inv_cdf(p)
+    except ImportError as e:
+        raise ImportError("sadr: confidence bands need scipy's Student t quantile (scipy.stats.t); "
+                          "install python3-scipy (Debian) or scipy") from e
+    return float(stats.t.ppf(p, dof))
 
 
-def band(values: np.ndarray, times, confidence: float = 0.95):
+def band(values: np.ndarray, times, confidence: float = 0.95) -> pd.DataFrame:
     """Confidence band of the ensemble mean from a (realizations x times) array.
 
     Returns a pandas DataFrame indexed by time with columns n, mean, std

@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 from functools import cached_property
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import yaml
@@ -15,6 +16,10 @@ import yaml
 from .frames import read_columns
 from .runs import Run
 from .series import observe
+
+if TYPE_CHECKING:
+    import pandas as pd
+    import xarray as xr
 
 
 def is_sweep(path) -> bool:
@@ -52,7 +57,7 @@ class Sweep:
         return list(self.manifest.get("parameters", []))
 
     @cached_property
-    def points(self):
+    def points(self) -> pd.DataFrame:
         """pandas DataFrame indexed by point: one column per parameter (values
         parsed as YAML scalars), plus seed, aggregate state and directory."""
         import pandas as pd
@@ -68,7 +73,7 @@ class Sweep:
         return pd.DataFrame([r for _, r in rows], index=pd.Index([i for i, _ in rows], name="point"))
 
     @cached_property
-    def runs(self):
+    def runs(self) -> pd.DataFrame:
         """pandas DataFrame of the runs (index: array index): point,
         realization, state, exit_code, reason, dir."""
         import pandas as pd
@@ -86,7 +91,7 @@ class Sweep:
             raise KeyError(f"{self.path}: no run of point {point}, realization {realization}")
         return Run(sel["dir"].iloc[0])
 
-    def table(self, region=None, stat: str = "total", species=None):
+    def table(self, region=None, stat: str = "total", species: str | list[str] | None = None) -> pd.DataFrame:
         """The tidy table: one row per (point, realization, frame), columns
         point, <parameters...>, realization, frame, time, then one column per
         species holding ``stat`` over ``region``.
@@ -125,7 +130,7 @@ class Sweep:
         cols = ["point"] + self.parameters + ["realization", "frame", "time"]
         return out[cols + [c for c in out.columns if c not in cols]].reset_index(drop=True)
 
-    def fields(self, point: int):
+    def fields(self, point: int) -> xr.Dataset:
         """xarray Dataset of point ``point``'s aggregate frames
         (points/pPPPP/frame_NNNNNN.csv): dims (time, particle); coordinates
         id and realization 0's x, y, z; variables S_mean, S_var, S_sem,
@@ -156,7 +161,7 @@ class Sweep:
         )
         return ds
 
-    def all_fields(self):
+    def all_fields(self) -> xr.Dataset:
         """The aggregated points' fields along a ``point`` dimension, with each
         parameter as a coordinate on it (the particles must be the same)."""
         import xarray as xr

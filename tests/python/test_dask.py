@@ -24,7 +24,7 @@ def same_files(a, b, pattern):
 
 def test_dask_equals_local_executor(tmp_path):
     scene = poiseuille(end=0.3, every=0.1, formats=("vtu", "csv"))
-    scene["species.0.diffusivity"] = 0.01  # more jumps: realizations differ
+    scene["species[0].diffusivity"] = 0.01  # more jumps: realizations differ
     path = scene.write(tmp_path / "scene.yaml")
     local = scene.run(tmp_path / "local", realizations=R, jobs=2)
     with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as cluster, \

@@ -80,7 +80,11 @@ def test_mean_frame_is_numpy_mean(static_ensemble):
         a = np.array([run.frame(k).species["A"] for run in ens.runs])
         assert m["time"] == ens.times[k]
         assert (m["realizations"] == 4).all()
-        assert np.array_equal(m["ids"], ens.runs[0].frame(k).ids)
+        f0 = ens.runs[0].frame(k)
+        assert np.array_equal(m["ids"], f0.ids)
+        assert m["positions"].shape == (len(f0), 3) and m["kinds"].dtype == np.uint8
+        np.testing.assert_array_equal(m["positions"], f0.positions)  # realization 0's, by id
+        np.testing.assert_array_equal(m["kinds"], f0.kinds)
         np.testing.assert_allclose(m["A"][0], a.mean(axis=0), rtol=1e-13, atol=1e-13)
         np.testing.assert_allclose(m["A"][1], a.var(axis=0, ddof=1), rtol=1e-12, atol=1e-12)
 

@@ -11,12 +11,13 @@ from conftest import EXAMPLES, static_scene
 def test_keys_and_round_trip(tmp_path):
     s = sadr.Scene.load(EXAMPLES / "static_reaction_diffusion.yaml")
     assert s["time.end"] == 2.0
-    assert s["species.0.name"] == "A"
-    s["species.0.diffusivity"] = 0.02
+    assert s["species[0].name"] == "A" and s["reactions[decay_B].rate"] == 1.0
+    s["species[0].diffusivity"] = 0.02
+    s["reactions[make_B].regions"] = ["source"]
     s["output.vtk_encoding"] = "ascii"
     assert "output.vtk_encoding" in s and "output.nothing" not in s
-    with pytest.raises(KeyError, match="scene has no 'species.5.name'"):
-        s["species.5.name"]
+    with pytest.raises(KeyError, match=r"scene has no 'species\[5\].name'.*index 5 is out of range"):
+        s["species[5].name"]
     path = s.write(tmp_path / "edited.yaml")
     back = yaml.safe_load(path.read_text())
     assert back["species"][0]["diffusivity"] == 0.02

@@ -66,8 +66,8 @@ def test_events_counted(tmp_path):
     """Decay only, no diffusion: every SSA event is one A -> 0, so run.json's
     ssa_events (and the summary) equal the molecules lost, exactly."""
     s = static_scene(end=0.5, every=0.25)
-    s["species.0.diffusivity"] = 0.0
-    s["species.0.initial"] = [{"region": "source", "count": 50}]
+    s["species[0].diffusivity"] = 0.0
+    s["species[0].initial"] = [{"region": "source", "count": 50}]
     s["reactions"] = [r for r in s["reactions"] if r["name"] != "make_A"]
     run = s.run(tmp_path / "decay")
     lost = run.frame(0).species["A"].sum() - run.frame(-1).species["A"].sum()
