@@ -100,9 +100,12 @@ RelaxReport relax(ParticleSet& p, const FluidDomain& domain, Lattice lattice,
   const WendlandC2 w(p.dimension, h);
   const double n0 = reference_number_density(p.dimension, lattice, dx, h);
   rep.reference_number_density = n0;
-  std::vector<int> fluid;
+  // Fluid particles, and wall particles within half a support of their surface, move; deeper
+  // walls stay on the lattice as a fixed backing.
+  std::vector<int> fluid, moving;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.kind[i] == Kind::kFluid) fluid.push_back(static_cast<int>(i));
+    if (p.kind[i] == Kind::kFluid || p.distance[i] < 0.5 * h) moving.push_back(static_cast<int>(i));
   }
   CellGrid grid(domain.box, p.dimension, domain.periodic, h);
   // Pressure P = (n / n0)^2 / n: the denser side of a pair pushes harder, so the fixed point is a
@@ -133,20 +136,20 @@ RelaxReport relax(ParticleSet& p, const FluidDomain& domain, Lattice lattice,
       for (const Vec3& s : sites) {
         const Vec3 d = moved - s;
         const double r = norm(d);
-        if (r > 0 && r < h) delta += 2 * pressure(n0) * w.f(r) * d;
+        if (norm2(s - centre) > 0 && r < h) delta += 2 * pressure(n0) * w.f(r) * d;
       }
       k_stiff = std::max(k_stiff, -delta[a] / eps);
     }
   }
   if (!(k_stiff > 0)) throw NumericalFailure("relax: the kernel gives no restoring force");
-  const double lambda = 0.5 / k_stiff;
+  const double lambda = o.step_factor / k_stiff;
   const double cap = o.max_step * dx;
   std::vector<double> n(p.size(), n0);
   std::vector<Vec3> next(p.position);
   for (int it = 0;; ++it) {
     grid.build(p.position);
-    parallel_for(fluid.size(), o.threads, [&](std::size_t f) {
-      const int i = fluid[f];
+    parallel_for(moving.size(), o.threads, [&](std::size_t f) {
+      const int i = moving[f];
       double s = 0;
       grid.for_neighbors(p.position[i], p.position, [&](int, Vec3 d) {
         const double r2 = norm2(d);
@@ -160,8 +163,8 @@ RelaxReport relax(ParticleSet& p, const FluidDomain& domain, Lattice lattice,
     rep.rms_error = e.rms;
     rep.iterations = it;
     if (e.max < o.tolerance || it >= o.max_iterations) break;
-    parallel_for(fluid.size(), o.threads, [&](std::size_t f) {
-      const int i = fluid[f];
+    parallel_for(moving.size(), o.threads, [&](std::size_t f) {
+      const int i = moving[f];
       const double pi = pressure(n[i]);
       Vec3 delta;
       grid.for_neighbors(p.position[i], p.position, [&](int j, Vec3 d) {
@@ -172,13 +175,19 @@ RelaxReport relax(ParticleSet& p, const FluidDomain& domain, Lattice lattice,
       if (norm(step) > cap) step = cap / norm(step) * step;
       Vec3 x = grid.confine(p.position[i] + step);
       if (p.distance[i] < std::numeric_limits<double>::infinity()) {
-        // Near a surface: a particle that left the fluid region goes back in along the normal.
+        // Near a surface: each particle stays on its side, 0.1 dx clear of the surface (fluid
+        // inside the region, walls in their layer).
         const double sd = fluid_signed_distance(domain, x);
-        if (sd > -0.25 * dx) x = grid.confine(x - (sd + 0.25 * dx) * region_normal(domain, x));
+        const double margin = 0.1 * dx;
+        if (p.kind[i] == Kind::kFluid && sd > -margin) {
+          x = grid.confine(x - (sd + margin) * region_normal(domain, x));
+        } else if (p.kind[i] == Kind::kWall && sd < margin) {
+          x = grid.confine(x + (margin - sd) * region_normal(domain, x));
+        }
       }
       next[i] = x;
     });
-    for (int i : fluid) p.position[i] = next[i];
+    for (int i : moving) p.position[i] = next[i];
   }
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;

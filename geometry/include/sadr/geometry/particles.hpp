@@ -82,6 +82,8 @@ struct RelaxOptions {
   int max_iterations = 400;
   double tolerance = 0.01;  ///< stop when max |rho / rho_ref - 1| over fluid particles < this
   double max_step = 0.2;    ///< largest move per iteration [spacing]
+  /// Step as a fraction of the one that would undo a single displaced particle's offset at once.
+  double step_factor = 0.5;
   int threads = 0;
 };
 

@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+// Bad mesh input, table-tested: each refused with InvalidArgument naming the file (and the
+// element or group) and what was expected.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "mesh_builders.hpp"
+#include "sadr/common/status.hpp"
+#include "sadr/geometry/mesh_io.hpp"
+
+namespace sadr::geometry {
+namespace {
+
+struct BadCase {
+  const char* file;     ///< written into the temp dir unless content is null
+  const char* content;  ///< null: do not create it
+  int dimension;
+  const char* group;   ///< surface to look up after reading (null: none)
+  const char* expect;  ///< substring of the message
+};
+
+const char* const kSquare = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+1
+1 1 "inlet"
+$EndPhysicalNames
+$Nodes
+3
+1 0 0 0
+2 1 0 0
+3 0 1 0
+$EndNodes
+$Elements
+2
+1 1 2 1 1 1 3
+2 2 2 2 1 1 2 3
+$EndElements
+)";
+
+TEST(BadInput, MeshFilesAreRefusedWithFileAndReason) {
+  const std::string dir = testing::temp_dir("bad");
+  const BadCase cases[] = {
+      {"missing.stl", nullptr, 3, nullptr, "cannot open"},
+      {"shape.obj", "v 0 0 0\n", 3, nullptr, "unsupported mesh format '.obj'"},
+      {"noext", "solid x\nendsolid x\n", 3, nullptr, "unsupported mesh format"},
+      {"empty.stl", "solid x\nendsolid x\n", 3, nullptr, "empty mesh"},
+      {"nan.stl",
+       "solid x\nfacet normal 0 0 1\nouter loop\nvertex nan 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+       "endloop\nendfacet\nendsolid x\n",
+       3, nullptr, "empty mesh"},  // gmsh drops a facet with a non-finite vertex
+      {"inf.stl",
+       "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex inf 0 0\nvertex 0 1 0\n"
+       "endloop\nendfacet\nendsolid x\n",
+       3, nullptr, "empty mesh"},
+      {"group.msh", kSquare, 2, "outlet", "no physical curve named 'outlet'; the file has inlet"},
+      {"garbage.msh", "$MeshFormat\nthis is not a mesh\n", 2, nullptr, ""},
+      {"dim.stl", "solid x\nendsolid x\n", 4, nullptr, "dimension must be 2 or 3"},
+  };
+  for (const BadCase& c : cases) {
+    const std::string path = dir + "/" + c.file;
+    if (c.content) std::ofstream(path) << c.content;
+    try {
+      const MeshFile mf = read_mesh(path, c.dimension);
+      if (c.group) (void)mf.surface(c.group);
+      ADD_FAILURE() << c.file << ": accepted";
+    } catch (const InvalidArgument& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(path), std::string::npos) << c.file << ": " << msg;
+      EXPECT_NE(msg.find(c.expect), std::string::npos) << c.file << ": " << msg;
+    }
+  }
+}
+
+TEST(BadInput, InMemoryMeshesNameTheElement) {
+  SurfaceMesh m;
+  m.source = "cell.stl";
+  EXPECT_THROW(validate(m), InvalidArgument);  // empty
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.triangles = {{0, 1, 5}};
+  try {
+    validate(m);
+    ADD_FAILURE();
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("cell.stl: triangle 0 refers to vertex 5"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace sadr::geometry
