@@ -13,6 +13,7 @@ PACKAGES=(
   libboost-graph-dev                        # graph diagnostics (connected_components), Boost.Math, the CSR comparison bench
   libgtest-dev libgmock-dev                 # tests
   libbenchmark-dev                          # found by CMake, not used yet (README "Dependencies")
+  libgmsh-dev                               # geometry/: reads .msh v2/v4 with physical groups, and STL (docs/geometry.md)
   libcli11-dev                              # command-line parsing
   libyaml-cpp-dev                           # scene files
   libmuparser-dev                           # expression rate laws (common/rate_law.hpp)
