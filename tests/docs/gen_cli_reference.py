@@ -36,7 +36,8 @@ def helptext(exe, args):
                        stderr=subprocess.STDOUT, text=True, env=env, timeout=60)
     if p.returncode != 0:
         raise SystemExit(f"{exe} {' '.join(args)} --help exited with {p.returncode}:\n{p.stdout}")
-    return p.stdout.rstrip() + "\n"
+    # CLI11 prints the path it was invoked by ("Usage: build/ci/bin/sadr ..."): the page says "sadr"
+    return p.stdout.replace(str(exe), pathlib.Path(exe).name).rstrip() + "\n"
 
 
 def subcommands(top):
