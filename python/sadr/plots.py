@@ -6,6 +6,7 @@ chosen with MPLBACKEND or by importing pyplot first, so they work without a disp
     sadr.plot_profile(frame, "vx", [0.5, 0], [0.5, 1])
     sadr.plot_series(ensemble.band("T"))           # mean and confidence band
     sadr.plot_sweep(table, "diffusivity", "T")     # observable against a parameter
+    sadr.plot_overview(run)                        # one figure of a run (overview)
 
 Each takes ``ax=`` to draw into existing axes and returns that axes' figure.
 """
@@ -21,10 +22,12 @@ import matplotlib
 if "MPLBACKEND" not in os.environ and "matplotlib.pyplot" not in sys.modules:
     matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
 import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from .frames import KIND_NAMES  # noqa: E402
+from .frames import KIND_NAMES, Frame  # noqa: E402
 from .regions import as_region  # noqa: E402
 
 _MARKERS = {0: "o", 1: "s", 2: ">", 3: "<"}
@@ -37,9 +40,9 @@ def _axes(ax, figsize=(6, 4)):
     return fig, ax
 
 
-def plot_particles(frame, color: str = "speed", *, region=None, axes=(0, 1), size=None,
-                   cmap="viridis", walls: bool = True, arrows: bool = False, ax=None,
-                   title: str | None = None):
+def plot_particles(frame: Frame, color: str = "speed", *, region=None, axes=(0, 1),
+                   size: float | None = None, cmap="viridis", walls: bool = True, arrows: bool = False,
+                   ax=None, title: str | None = None) -> Figure:
     """Particles of ``frame`` in the plane of ``axes`` (default x-y), coloured by
     ``color`` (a species, 'speed', 'density', any Frame.field name). Wall
     particles are drawn grey and uncoloured when ``walls``; ``arrows`` adds the
@@ -65,7 +68,8 @@ def plot_particles(frame, color: str = "speed", *, region=None, axes=(0, 1), siz
     return fig
 
 
-def profile(frame, field: str, start, end, *, width=None, bins: int = 20, region=None):
+def profile(frame: Frame, field: str, start, end, *, width: float | None = None, bins: int = 20,
+            region=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Mean of ``field`` along the segment start -> end: particles within
     ``width`` of the segment (default: 1/bins of its length) are binned by their
     projection onto it. Returns (s, mean, count): bin centres (distance from
@@ -93,7 +97,7 @@ def profile(frame, field: str, start, end, *, width=None, bins: int = 20, region
 
 
 def plot_profile(frame, field: str, start, end, *, width=None, bins: int = 20, region=None,
-                 reference=None, reference_label="reference", ax=None, label=None):
+                 reference=None, reference_label="reference", ax=None, label=None) -> Figure:
     """Profile of ``field`` along start -> end (see :func:`profile`); ``reference``
     is an optional callable s -> value drawn as a dashed line. Returns the Figure."""
     fig, ax = _axes(ax)
@@ -108,7 +112,8 @@ def plot_profile(frame, field: str, start, end, *, width=None, bins: int = 20, r
     return fig
 
 
-def plot_series(data, *, ax=None, label=None, ylabel=None, title=None):
+def plot_series(data, *, ax=None, label: str | None = None, ylabel: str | None = None,
+                title: str | None = None) -> Figure:
     """Time series: a band DataFrame (Ensemble.band: mean with its lower/upper
     band shaded), or a DataFrame/Series of plain columns (Run.series,
     Ensemble.series), one line each. Returns the Figure."""
@@ -136,14 +141,12 @@ def plot_series(data, *, ax=None, label=None, ylabel=None, title=None):
 
 
 def sweep_summary(table, parameter: str, observable: str, *, time=None,
-                  confidence: float = 0.95):
+                  confidence: float = 0.95) -> pd.DataFrame:
     """Per value of ``parameter`` in a tidy table (Sweep.table): the mean over
     realizations of ``observable`` at ``time`` (default: the last time), the
     ``confidence`` interval mean -+ t(0.5 + confidence / 2, n - 1) sem (NaN for
     n = 1) and n. Returns a DataFrame with columns ``parameter``,
     '<observable>_mean', 'ci_lo', 'ci_hi', 'realizations', sorted by parameter."""
-    import pandas as pd
-
     from .series import t_quantile
 
     if time is None:
@@ -162,7 +165,7 @@ def sweep_summary(table, parameter: str, observable: str, *, time=None,
 
 
 def plot_sweep(table, parameter: str, observable: str, *, time=None, confidence: float = 0.95,
-               ax=None):
+               ax=None) -> Figure:
     """A sweep observable against its parameter from a tidy table (columns
     ``parameter``, 'realization', 'time', ``observable``; Sweep.table): the mean
     over realizations at ``time`` (default: the last time) with its t band
@@ -182,7 +185,7 @@ def plot_sweep(table, parameter: str, observable: str, *, time=None, confidence:
     return fig
 
 
-def overview(run, species: str | None = None):
+def overview(run, species: str | None = None) -> Figure:
     """A one-figure look at a run: ``species`` (default: the first) at the first
     and at the last frame, the speed at the last frame, and the x-velocity
     profile across the fluid at the last frame (2D/3D runs); for a 1D run, the
@@ -217,3 +220,6 @@ def overview(run, species: str | None = None):
     axes[1, 1].set_title(f"x-velocity across the fluid, mean over x (t = {last.time:g})")
     fig.suptitle(title)
     return fig
+
+
+plot_overview = overview

@@ -14,9 +14,31 @@ def png(fig, path):
     return data
 
 
-def test_backend_is_agg():
-    sadr.plot_particles  # noqa: B018 - imports sadr.plots
-    assert matplotlib.get_backend().lower() == "agg"
+def _backend_after_import(tmp_path, env_backend=None, pyplot_first=False):
+    """matplotlib's backend after `import sadr.plots` in a fresh interpreter whose
+    matplotlibrc asks for the svg backend (ctest sets MPLBACKEND: removed here)."""
+    import os
+    import subprocess
+    import sys
+
+    (tmp_path / "matplotlibrc").write_text("backend: svg\n")
+    env = {k: v for k, v in os.environ.items() if k != "MPLBACKEND"}
+    env["MPLCONFIGDIR"] = str(tmp_path)
+    if env_backend:
+        env["MPLBACKEND"] = env_backend
+    code = ("import matplotlib\n" + ("import matplotlib.pyplot\n" if pyplot_first else "")
+            + "import sadr.plots\nprint(matplotlib.get_backend().lower())")
+    proc = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    return proc.stdout.strip()
+
+
+def test_backend_is_agg_unless_chosen(tmp_path):
+    """sadr.plots selects Agg (no display needed) over a configured backend,
+    but not over MPLBACKEND nor a pyplot already imported."""
+    assert _backend_after_import(tmp_path) == "agg"
+    assert _backend_after_import(tmp_path, env_backend="pdf") == "pdf"
+    assert _backend_after_import(tmp_path, pyplot_first=True) == "svg"
 
 
 def test_particles_coloured(tmp_path, poiseuille_runs):

@@ -1,0 +1,259 @@
+# SPDX-License-Identifier: MIT
+"""sadr.Model: scenes built in Python equal their YAML, load -> save keeps
+every example's meaning (same data, same `sadr validate` output), every
+refusal is the CLI's message, and runs return the result objects."""
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+import sadr
+from conftest import EXAMPLES, REPO
+from sadr.model import Boundary, BoundaryFlux, Fluid, Initial, Observable, Reaction, Region, Species
+from sadr.paths import PathError, load_yaml
+
+
+def static_model(end=2.0):
+    """examples/static_reaction_diffusion.yaml, written in Python."""
+    m = sadr.Model("static_reaction_diffusion", dimension=2, seed=7,
+                   description="production in a disk, decay everywhere; stochastic A vs deterministic B")
+    m.set_box([0.0, 0.0], [1.0, 1.0], periodic=[True, True])
+    m.add_region("source", "disk", center=[0.5, 0.5], radius=0.15)
+    m.set_lattice(spacing=0.05, density=1.0)
+    m.set_fluid("static", h_over_dx=2.0)
+    m.add_species("A", stochastic=True, diffusivity=0.01)
+    m.add_species("B", stochastic=False, diffusivity=0.01)
+    for s in ("A", "B"):
+        m.add_reaction(f"0 -> {s}", name=f"make_{s}", rate=4000, regions=["source"])
+        m.add_reaction(f"{s} -> 0", name=f"decay_{s}", rate=1.0)
+    m.set_time(coupling_step=0.05, end=end)
+    m.set_output(every=0.25, formats=["vtu", "csv"])
+    return m
+
+
+def plan(text, *paths):
+    """`sadr validate` output with the scene's path taken out."""
+    for p in paths:
+        text = text.replace(str(p), "SCENE")
+    return text
+
+
+def test_built_in_python_equals_the_example(tmp_path):
+    m = static_model()
+    example = load_yaml((EXAMPLES / "static_reaction_diffusion.yaml").read_text())
+    assert m.to_dict() == example
+    assert list(m.to_dict()) == list(example)  # the scene format's key order
+    path = m.save(tmp_path / "static_reaction_diffusion.yaml")
+    mine = sadr.run_cli(["validate", path]).stderr
+    theirs = sadr.run_cli(["validate", EXAMPLES / "static_reaction_diffusion.yaml"]).stderr
+    assert plan(mine, path) == plan(theirs, EXAMPLES / "static_reaction_diffusion.yaml")
+    assert "sadr: scene 'static_reaction_diffusion' (400 particles, 2 species, 4 reactions)" in mine
+
+
+EXAMPLE_FILES = sorted(p.name for p in EXAMPLES.glob("*.yaml"))
+
+
+@pytest.mark.parametrize("name", EXAMPLE_FILES)
+def test_load_save_keeps_the_meaning(tmp_path, name):
+    """Every example: load, save elsewhere (a particle file's path rewritten),
+    the same data with paths resolved, and the same `sadr validate` output."""
+    source = EXAMPLES / name
+    m = sadr.Model.load(source)
+    assert m.to_dict() == load_yaml(source.read_text())  # nothing lost or added on reading
+    saved = m.save(tmp_path / "elsewhere" / name)
+    back = sadr.Model.load(saved)
+    assert back.resolved() == sadr.Model.load(source).resolved()
+    # both validations at once (the largest examples take seconds each)
+    procs = [subprocess.Popen([str(sadr.find_sadr()), "validate", str(p)], stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True) for p in (saved, source)]
+    (out_saved, err_saved), (out_source, err_source) = [p.communicate() for p in procs]
+    assert [p.returncode for p in procs] == [0, 0], err_saved + err_source
+    assert plan(err_saved + out_saved, saved) == plan(err_source + out_source, source)
+
+
+def test_edit_and_save(tmp_path):
+    m = sadr.Model.load(EXAMPLES / "yeast_cell_channel.yaml")
+    m.get_reaction("binding").rate = 8e-7
+    m.set("time.end", 0.5).set("species[R].diffusivity", 0.001)
+    assert m["reactions[binding].rate"] == 8e-7 and m.get_species("R").diffusivity == 0.001
+    assert m.time.end == 0.5
+    with pytest.raises(PathError, match="no item named 'X'.*L, R, RL"):
+        m.set("species[X].diffusivity", 1.0)
+    path = m.save(tmp_path / "yeast.yaml")
+    assert (path.parent / m.particles.file).resolve() == (EXAMPLES / "data" / "yeast_cell_particles.csv").resolve()
+    back = load_yaml(path.read_text())
+    assert back["reactions"][0]["rate"] == 8e-7 and back["species"][1]["diffusivity"] == 0.001
+    assert "t_end = 0.5" in sadr.run_cli(["validate", path]).stderr
+
+
+def every_law_model():
+    """Mass action (each order, reversible), Michaelis-Menten, Hill, expression,
+    assigned species, parameters by name, hybrid laws, boundary fluxes,
+    boundary conditions, observables."""
+    m = sadr.Model("laws", dimension=2, seed=3)
+    m.set_box([0, 0], [1, 1], periodic=[True, False])
+    m.add_region("top", "box", lower=[0, 0.9], upper=[1, 1])
+    m.add_region("patch", "box", lower=[0.2, 0], upper=[0.6, 0])
+    m.add_region("cell", "annulus", center=[0.5, 0.5], inner_radius=0.05, outer_radius=0.2)
+    m.add_region("slab", "channel", axis="x", lower=0.0, upper=0.3)
+    m.add_region("three", "ids", ids=[0, 1, 2])
+    m.set_lattice(spacing=0.1)
+    m.add_fill("top", "wall")
+    m.add_fill(kind="fluid")
+    m.set_fluid("static", smoothing_length=0.25, kernel="wendland_c2", parameters={"diffusion_eps": 0.02})
+    m.parameters.update(kcat=2.5, Km=0.1, q=0.3)
+    m.add_species("S", 0.01).add_initial(count=5).add_initial("slab", count=8)
+    m.add_species("E", 0.0).add_initial("cell", count=3)
+    m.add_species("P", 0.01).add_boundary("top", "dirichlet", value=0.0)
+    m.add_species("R", 0.0)
+    m.add_species("B", 0.01, stochastic=False).add_initial(concentration=1.0)
+    m.add_assigned_species("SP", "S*P/2")
+    m.add_reaction("S + E <-> P", name="bind", rate=1e-3, reverse_rate=0.5)
+    m.add_reaction("2 S -> P", name="dimer", rate=1e-4, regions=["slab"])
+    m.add_reaction(name="make_R", reactants={}, products={"R": 1}, rate=10.0)
+    m.add_reaction("S -> P", name="cleave", law=sadr.MichaelisMenten(kcat="kcat", Km="Km", catalyst="E"))
+    m.add_reaction("0 -> R", name="switch", law=sadr.Hill(Vmax=4, K=0.5, n=2, of="S"))
+    m.add_reaction("R -> 0", name="custom", law=sadr.Expression("kcat*R/(Km+R) + 0*t"))
+    m.add_reaction("0 -> B", name="b_from_s", law=sadr.Expression("0.1*S"))  # hybrid: the fluid reads S
+    m.add_boundary_flux("y-", sadr.Expression("q"), species="S", name="supply")
+    m.add_boundary_flux("y-", sadr.Expression("0.8*P/(0.5+P)"), equation="P -> 0", region="patch")
+    m.set_time(0.01, 0.05, splitting="strang")
+    m.set_output(times=[0.0, 0.05], formats=["csv"], species=["S", "P", "B", "SP"])
+    m.add_observable("total_P", "P")
+    m.add_observable("mean_S", "S", region="slab", stat="mean")
+    m.set_ssa(convention="symmetric", regularization=0.02)
+    return m
+
+
+def test_every_rate_law_validates():
+    m = every_law_model()
+    text = m.validate()
+    # 7 SSA reactions (bind has a reverse) and 2 fluxes; one fluid reaction reading S
+    assert "ssa_service: launched; species on the wire: S, E, P, R; reactions: 9" in text
+    assert "fluid_service (static): launched, advanced every coupling step; species on the wire: B, S; " \
+        "reactions: 1" in text
+    assert "back-transfer ssa -> fluid: S" in text and "ssa laws of t" in text
+    assert "splitting: strang" in text and text.rstrip().endswith("laws.yaml: valid")
+    d = m.to_dict()
+    assert d["reactions"][3]["law"] == {"type": "michaelis_menten", "kcat": "kcat", "Km": "Km",
+                                        "catalyst": "E"}
+    assert d["boundary_fluxes"][1] == {"equation": "P -> 0", "face": "y-", "region": "patch",
+                                       "law": {"type": "expression", "expression": "0.8*P/(0.5+P)"}}
+    again = sadr.Model.from_dict(d)
+    assert again.to_dict() == d and again.reactions[4].law == sadr.Hill(4, 0.5, 2, of="S")
+    assert isinstance(again.reactions[0], Reaction) and isinstance(again.species[0], Species)
+    assert isinstance(again.species[0].initial[0], Initial)
+    assert isinstance(again.species[2].boundaries[0], Boundary)
+    assert isinstance(again.boundary_fluxes[0], BoundaryFlux) and isinstance(again.regions[0], Region)
+    assert isinstance(again.output.observables[1], Observable) and isinstance(again.fluid, Fluid)
+
+
+def cli_message(data, tmp_path, name):
+    path = tmp_path / name / "laws.yaml"
+    sadr.Scene(data).write(path)
+    proc = sadr.run_cli(["validate", path], check=False)
+    assert proc.returncode == 1
+    return proc.stderr.replace(str(path), "SCENE")
+
+
+@pytest.mark.parametrize("edit", ["negative_end", "unknown_key", "bad_law", "unknown_backend_parameter",
+                                  "unknown_species"])
+def test_refusals_are_the_clis_message(tmp_path, edit):
+    m = every_law_model()
+    if edit == "negative_end":
+        m.time.end = -1.0
+    elif edit == "unknown_key":
+        m.get_species("S").extra["diffusivty"] = 0.1
+    elif edit == "bad_law":
+        m.get_reaction("cleave").law = sadr.MichaelisMenten(kcat=1, Km=-1, catalyst="E")
+    elif edit == "unknown_backend_parameter":
+        m.fluid.parameters["density_diffusion"] = 0.1
+    else:
+        m.add_reaction("X -> 0", rate=1.0)
+    with pytest.raises(sadr.InvalidInput) as e:
+        m.validate()
+    assert e.value.code == 1
+    stem = re.search(r"sadr-model-\w+/laws\.yaml", e.value.stderr).group(0)
+    path = re.search(r"'([^']*" + re.escape(stem) + ")'", e.value.stderr).group(1)
+    assert e.value.stderr.replace(path, "SCENE") == cli_message(m.to_dict(), tmp_path, edit)
+    assert e.value.scene_yaml == m.to_yaml(path)
+    assert e.value.message.startswith("sadr exited with 1: ")
+
+
+def test_run_locally(tmp_path):
+    m = static_model(end=0.2)
+    m.set_output(every=0.1, formats=["csv"])
+    run = m.run(tmp_path / "one")
+    assert isinstance(run, sadr.Run) and run.times.tolist() == [0.0, 0.1, 0.2]
+    assert (tmp_path / "one.yaml").is_file() and run.manifest["scene_path"].endswith("one.yaml")
+    assert run.series("B").iloc[-1, 0] > 0
+    ens = m.run(tmp_path / "ens", realizations=2, jobs=2, overrides={"reactions[make_A].rate": 8000})
+    assert isinstance(ens, sadr.Ensemble) and len(ens) == 2
+    assert ens[0].manifest["overrides"] == ["reactions[make_A].rate=8000"]
+
+
+def test_run_on_dask(tmp_path):
+    distributed = pytest.importorskip("distributed", reason="python3-distributed is not installed")
+    m = static_model(end=0.1)
+    m.set_output(every=0.1, formats=["csv"])
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        ens = m.run(tmp_path / "dask", realizations=2, client=client)
+    assert isinstance(ens, sadr.Ensemble) and len(ens) == 2
+    assert ens.mean_frame(-1)["realizations"].min() == 2
+
+
+def test_a_particle_file_built_in_python(tmp_path, monkeypatch):
+    """A relative particle file is taken from the working directory and written
+    relative to the scene file, wherever that is."""
+    data = tmp_path / "data"
+    data.mkdir()
+    shutil.copy(EXAMPLES / "data" / "yeast_cell_particles.csv", data / "p.csv")
+    monkeypatch.chdir(tmp_path)
+    m = sadr.Model.load(EXAMPLES / "yeast_cell_channel.yaml")
+    m.set_particle_file("data/p.csv")
+    path = m.save(tmp_path / "deep" / "er" / "yeast.yaml")
+    assert load_yaml(path.read_text())["particles"]["file"] == "../../data/p.csv"
+    sadr.run_cli(["validate", path])
+
+
+def test_model_knows_every_key_of_the_loader():
+    """The builder's fields are the scene loader's keys (orchestrator/core/src),
+    so nothing the format takes needs ``extra``."""
+    src = "\n".join(p.read_text() for p in (REPO / "orchestrator" / "core" / "src").glob("scene*.cpp"))
+    arrays = {m[0]: re.findall(r'"([^"]+)"', m[1])
+              for m in re.findall(r"k(\w*Keys)\{([^}]*)\}", src)}
+    import dataclasses
+
+    from sadr import model
+
+    def fields(cls):
+        return {f.name for f in dataclasses.fields(cls)} - {"extra"}
+    expect = {"SpeciesKeys": fields(model.Species) - {"assigned"}, "InitialKeys": fields(model.Initial),
+              "BoundaryKeys": fields(model.Boundary), "ReactionKeys": fields(model.Reaction),
+              "FluidKeys": fields(model.Fluid), "PlaneKeys": fields(model.WallPlane),
+              "OpenKeys": fields(model.OpenBoundary), "BoussinesqKeys": fields(model.Boussinesq),
+              "FluxKeys": fields(model.BoundaryFlux), "ParticleKeys": fields(model.Particles),
+              "FillKeys": fields(model.Fill), "RegionKeys": fields(model.Region),
+              "TimeKeys": fields(model.Time), "OutputKeys": fields(model.Output),
+              "ObservableKeys": fields(model.Observable), "TopKeys": set(model._TOP)}
+    for name, keys in expect.items():
+        assert set(arrays[name]) == keys, name
+    laws = {"MichaelisKeys": sadr.MichaelisMenten(1, 1, "E", "S"), "HillKeys": sadr.Hill(1, 1, 1, "A"),
+            "ExpressionKeys": sadr.Expression("1")}
+    for name, law in laws.items():
+        assert set(arrays[name]) == set(law.to_dict()), name
+
+
+def test_docs_example_runs(tmp_path, monkeypatch):
+    """The sadr.Model example of docs/python.md, as written there."""
+    text = (REPO / "docs" / "python.md").read_text()
+    section = text[text.index("## Building a scene in Python"):]
+    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    monkeypatch.chdir(tmp_path)
+    env: dict = {}
+    exec(compile(code, "docs/python.md", "exec"), env)  # noqa: S102 - the documented example
+    assert isinstance(env["run"], sadr.Run) and len(env["run"]) >= 2
+    assert Path("runs/decay.yaml").is_file()
