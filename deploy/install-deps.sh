@@ -22,6 +22,8 @@ PACKAGES=(
   procps                                    # pgrep, used by the e2e tests to find service processes
   python3-pandas python3-xarray python3-matplotlib python3-yaml  # the Python package (python/sadr)
   python3-pytest                            # its tests (tests/python, run by ctest)
+  flake8                                    # the Python linter of the python_lint test (python/.flake8)
+  python3-venv python3-pip                  # python_package: pip install ./python into a venv, offline
   python3-distributed                       # the Dask example (python/sadr/dask_runner.py)
   python3-nbconvert python3-ipykernel       # the notebook examples/notebooks/, executed in the tests
   clang-format                              # .ci/run fails on a formatting difference
