@@ -32,6 +32,7 @@ rewritten relative to the new file).
 """
 from __future__ import annotations
 
+import copy
 import dataclasses
 import os
 import tempfile
@@ -483,6 +484,16 @@ class Model:
     def __repr__(self) -> str:
         return (f"sadr.Model({self.name!r}, dimension={self.dimension}, {len(self.species)} species, "
                 f"{len(self.reactions)} reactions)")
+
+    def copy(self) -> Model:
+        """An independent deep copy (same base_dir)."""
+        return copy.deepcopy(self)
+
+    def __eq__(self, other: object) -> bool:
+        """Equal when they write the same scene (file paths resolved)."""
+        return isinstance(other, Model) and self.resolved() == other.resolved()
+
+    __hash__ = None  # mutable
 
     # --- building ---------------------------------------------------------------
 

@@ -75,7 +75,10 @@ def test_load_save_keeps_the_meaning(tmp_path, name):
 
 def test_edit_and_save(tmp_path):
     m = sadr.Model.load(EXAMPLES / "yeast_cell_channel.yaml")
+    original = m.copy()
+    assert original == m
     m.get_reaction("binding").rate = 8e-7
+    assert original != m and original.get_reaction("binding").rate == 4e-7
     m.set("time.end", 0.5).set("species[R].diffusivity", 0.001)
     assert m["reactions[binding].rate"] == 8e-7 and m.get_species("R").diffusivity == 0.001
     assert m.time.end == 0.5
