@@ -260,3 +260,81 @@ def test_docs_example_runs(tmp_path, monkeypatch):
     exec(compile(code, "docs/python.md", "exec"), env)  # noqa: S102 - the documented example
     assert isinstance(env["run"], sadr.Run) and len(env["run"]) >= 2
     assert Path("runs/decay.yaml").is_file()
+
+
+def tutorial_scenes():
+    """The YAML blocks of docs/tutorials/*.md that are whole scenes."""
+    out = []
+    for page in sorted((REPO / "docs" / "tutorials").glob("*.md")):
+        for k, block in enumerate(re.findall(r"```yaml\n(.*?)```", page.read_text(), re.S)):
+            data = load_yaml(block)
+            if isinstance(data, dict) and "dimension" in data:
+                out.append(pytest.param(block, id=f"{page.stem}-{k}"))
+    return out
+
+
+@pytest.mark.parametrize("block", tutorial_scenes() or [pytest.param(None, marks=pytest.mark.skip(
+    reason="docs/tutorials has no scene"))])
+def test_tutorial_scenes_round_trip(tmp_path, block):
+    """Each scene of the tutorials, read into a Model and written back: the
+    same data, and `sadr validate` says the same of both files."""
+    data = load_yaml(block)
+    m = sadr.Model.from_dict(data, tmp_path)
+    assert m.to_dict() == data
+    (tmp_path / "a.yaml").write_text(block)
+    m.save(tmp_path / "b.yaml")
+    said = []
+    for name in ("a.yaml", "b.yaml"):
+        proc = sadr.run_cli(["validate", name], check=False, cwd=tmp_path)
+        said.append((proc.returncode, proc.stdout.replace(name, "S"), proc.stderr.replace(name, "S")))
+    assert said[0][0] == 0, said[0][2]
+    assert said[0] == said[1]
+
+
+def first_scene():
+    """Tutorial 1's scene, written in Python."""
+    m = sadr.Model("first", dimension=2, seed=7, description="molecules made in a disk, diffusing and decaying")
+    m.set_box([0.0, 0.0], [1.0, 1.0], periodic=[True, True])
+    m.add_region("source", "disk", center=[0.5, 0.5], radius=0.15)
+    m.set_lattice(spacing=0.05, density=1.0)
+    m.set_fluid("static", h_over_dx=2.0)
+    m.add_species("A", stochastic=True, diffusivity=0.01)
+    m.add_reaction("0 -> A", name="make", rate=4000, regions=["source"])
+    m.add_reaction("A -> 0", name="decay", rate=1.0)
+    m.set_time(coupling_step=0.05, end=2.0)
+    m.set_output(every=0.5, formats=["vtu", "csv"])
+    return m
+
+
+def reaction_network():
+    """Tutorial 2's scene (rate laws, mixed species), written in Python."""
+    m = sadr.Model("network", dimension=2, seed=11)
+    m.set_box([0.0, 0.0], [10.0, 10.0], periodic=[True, True])
+    m.add_region("source", "disk", center=[5.0, 5.0], radius=2.0)
+    m.set_lattice(spacing=1.0, density=1.0)
+    m.set_fluid("static", h_over_dx=2.0)
+    m.parameters.update(q=50, Vmax=20, K=10, kcat=0.5, Km=20)
+    m.add_species("L", stochastic=False, diffusivity=1.0)
+    m.add_species("R", stochastic=True, diffusivity=0.0)
+    m.add_species("S", stochastic=True, diffusivity=0.5).add_initial(count=50)
+    m.add_species("P", stochastic=True, diffusivity=0.5)
+    m.add_reaction("0 -> L", name="release", regions=["source"], law=sadr.Expression("t < 1 ? q : 0"))
+    m.add_reaction("L -> 0", name="clear", rate=1.0)
+    m.add_reaction("0 -> R", name="activate", law=sadr.Hill(Vmax="Vmax", K="K", n=2, of="L"))
+    m.add_reaction("R -> 0", name="deactivate", rate=0.5)
+    m.add_reaction("S -> P", name="convert", law=sadr.MichaelisMenten(kcat="kcat", Km="Km", catalyst="R"))
+    m.set_time(coupling_step=0.05, end=4.0)
+    m.set_output(every=1.0, formats=["csv"])
+    return m
+
+
+@pytest.mark.parametrize("page,build", [("01-first-scene", first_scene), ("02-reaction-network", reaction_network)])
+def test_tutorial_scene_built_in_python_equals_its_yaml(tmp_path, page, build):
+    text = (REPO / "docs" / "tutorials" / f"{page}.md").read_text()
+    block = re.search(r"```yaml\n(.*?)```", text, re.S).group(1)
+    m = build()
+    assert m.to_dict() == load_yaml(block)
+    (tmp_path / "yaml.yaml").write_text(block)
+    m.save(tmp_path / "python.yaml")
+    said = [sadr.run_cli(["validate", n], cwd=tmp_path).stderr.replace(n, "S") for n in ("yaml.yaml", "python.yaml")]
+    assert said[0] == said[1]
