@@ -145,6 +145,7 @@ def well_mixed():
         "# Table IV injury terms as volume sources (flux density x L / delta, L = 100, delta = 1).",
         "# Deterministic species (integrated by fluid_service, Heun); compared with the scipy",
         "# Radau reference (case `injury`) by tests/python/test_coagulation.py. docs/coagulation.md.",
+        "# Cost: about 1 s of CPU (examples/README.md).",
         "name: coagulation_well_mixed",
         "description: li2015 sec. III C cascade, one well-mixed voxel at the injury, tDPD units",
         "dimension: 1",
@@ -230,6 +231,9 @@ def channel(backend):
          "# as Neumann flux laws (`boundary_fluxes`) on the first fluid layer at y = 0 (the\n"
          "# particles there at t = 0; docs/coagulation.md \"Injury\")."),
         f"# Backend {what}.",
+        {"tdpd": "# Cost: about 37 CPU hours to t = 400 (projected from a run to t = 0.05, 18.2 s of CPU).",
+         "sdpd": "# Cost: about 220 CPU hours to t = 400 (projected from a run to t = 0.02, 40.7 s of CPU).",
+         "prescribed": "# Cost: 5.2 CPU minutes to t = 600 (one fluid thread); examples/README.md."}[backend],
         "# docs/coagulation.md: the model, the corrections of the paper's tables, what was run.",
         f"name: coagulation_cascade{'' if tdpd else '_' + backend}",
         f"description: li2015 coagulation cascade in a {size} channel ({backend})",
