@@ -5,6 +5,8 @@ species total at the last frame against a swept parameter with its 95 % band
 (sadr.plot_sweep; the table plotted, sadr.sweep_summary, is printed as CSV), as
 a PNG; `python3 -m sadr series RUN`: the species totals per frame as CSV.
 The one home of the sweep summary plot (orchestrator/app/sweep_plot.py calls it)."""
+from __future__ import annotations
+
 import argparse
 import sys
 from pathlib import Path
@@ -12,7 +14,7 @@ from pathlib import Path
 from . import open_output
 
 
-def main(argv=None) -> int:
+def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python3 -m sadr", description=__doc__)
     sub = ap.add_subparsers(dest="command", required=True)
     plot = sub.add_parser("plot", help="overview PNG of a run")

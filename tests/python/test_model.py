@@ -220,6 +220,12 @@ def test_a_particle_file_built_in_python(tmp_path, monkeypatch):
     path = m.save(tmp_path / "deep" / "er" / "yeast.yaml")
     assert load_yaml(path.read_text())["particles"]["file"] == "../../data/p.csv"
     sadr.run_cli(["validate", path])
+    # a backend's file parameter (prescribed's field_file) is re-anchored the same way
+    flow = sadr.Model.from_dict({"fluid": {"backend": "prescribed", "parameters": {"field_file": "f.csv"}}},
+                                base_dir=data)
+    out = flow.save(tmp_path / "x" / "flow.yaml")
+    assert load_yaml(out.read_text())["fluid"]["parameters"]["field_file"] == "../data/f.csv"
+    assert flow.resolved()["fluid"]["parameters"]["field_file"] == str(data / "f.csv")
 
 
 def test_model_knows_every_key_of_the_loader():
