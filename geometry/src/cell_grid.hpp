@@ -71,8 +71,14 @@ class CellGrid {
   }
 
   [[nodiscard]] Vec3 min_image(Vec3 d) const {
+    // Positions lie in the box, so one period at most.
     for (int a = 0; a < 3; ++a) {
-      if (periodic_[a]) d[a] -= len_[a] * std::round(d[a] / len_[a]);
+      if (!periodic_[a]) continue;
+      if (d[a] > 0.5 * len_[a]) {
+        d[a] -= len_[a];
+      } else if (d[a] < -0.5 * len_[a]) {
+        d[a] += len_[a];
+      }
     }
     return d;
   }

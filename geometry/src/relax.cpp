@@ -1,5 +1,13 @@
 // SPDX-License-Identifier: MIT
 // SPH number density, particle relaxation and volumes (particles.hpp).
+//
+// Relaxation minimises E = sum over fluid i of (n_i / n_ref - 1)^2 over the fluid positions by a
+// Gauss-Newton-scaled gradient step with a backtracking line search on E: the direction for
+// particle k is (n_ref / S) sum_j (e_k + e_j) F(r_kj) (x_k - x_j), with e = n / n_ref - 1 for fluid
+// and 0 for walls, and S = sum_j F(r_j)^2 r_j^2 over the ideal lattice (the diagonal of J^T J).
+// Walls stay on the lattice; a fluid particle that would leave the fluid region is put back along
+// the normal. Neighbours come from a Verlet list with a skin, rebuilt when a particle has moved
+// half the skin.
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -21,39 +29,11 @@ void check_support(const ParticleSet& p, double support) {
   }
 }
 
-/// Outward normal of the fluid region's boundary at p: that of the shape selected by the max in
-/// fluid_signed_distance.
-Vec3 region_normal(const FluidDomain& d, Vec3 p) {
-  double best = d.body ? d.body->signed_distance(p) : -std::numeric_limits<double>::infinity();
-  Vec3 n = d.body ? d.body->normal(p) : Vec3{};
-  for (const auto& s : d.solids) {
-    const double v = -s.shape->signed_distance(p);
-    if (v > best) best = v, n = -s.shape->normal(p);
-  }
-  return n;
-}
-
-struct Errors {
-  double max = 0, rms = 0;
-};
-
-Errors density_errors(const std::vector<double>& n, const std::vector<int>& fluid, double n0) {
-  Errors e;
-  for (int i : fluid) {
-    const double r = std::abs(n[i] / n0 - 1);
-    e.max = std::max(e.max, r);
-    e.rms += r * r;
-  }
-  e.rms = fluid.empty() ? 0.0 : std::sqrt(e.rms / static_cast<double>(fluid.size()));
-  return e;
-}
-
-}  // namespace
-
-double reference_number_density(int dimension, Lattice lattice, double spacing, double support) {
-  const double l = support + 4 * spacing;
-  const Aabb box{{-l, -l, dimension == 3 ? -l : 0.0}, {l, l, dimension == 3 ? l : 0.0}};
-  const LatticeCells lat = make_lattice(dimension, lattice, spacing, box, {});
+/// Offsets of the ideal lattice's sites within `support` of a site (the site excluded).
+std::vector<Vec3> ideal_neighbours(int dim, Lattice lattice, double dx, double support) {
+  const double l = support + 4 * dx;
+  const Aabb box{{-l, -l, dim == 3 ? -l : 0.0}, {l, l, dim == 3 ? l : 0.0}};
+  const LatticeCells lat = make_lattice(dim, lattice, dx, box, {});
   std::vector<Vec3> sites;
   for (long k = 0; k < lat.n[2]; ++k) {
     for (long j = 0; j < lat.n[1]; ++j) {
@@ -66,9 +46,32 @@ double reference_number_density(int dimension, Lattice lattice, double spacing, 
   for (const Vec3& s : sites) {
     if (norm2(s) < norm2(centre)) centre = s;
   }
+  std::vector<Vec3> out;
+  for (const Vec3& s : sites) {
+    const double r2 = norm2(s - centre);
+    if (r2 > 0 && r2 < support * support) out.push_back(s - centre);
+  }
+  return out;
+}
+
+/// Outward normal of the fluid region's boundary at p: that of the shape selected by the max in
+/// fluid_signed_distance.
+Vec3 region_normal(const FluidDomain& d, Vec3 p) {
+  double best = d.body ? d.body->signed_distance(p) : -std::numeric_limits<double>::infinity();
+  Vec3 n = d.body ? d.body->normal(p) : Vec3{};
+  for (const auto& s : d.solids) {
+    const double v = -s.shape->signed_distance(p);
+    if (v > best) best = v, n = -s.shape->normal(p);
+  }
+  return n;
+}
+
+}  // namespace
+
+double reference_number_density(int dimension, Lattice lattice, double spacing, double support) {
   const WendlandC2 w(dimension, support);
-  double n = 0;
-  for (const Vec3& s : sites) n += w.w(norm(s - centre));
+  double n = w.w(0);
+  for (const Vec3& d : ideal_neighbours(dimension, lattice, spacing, support)) n += w.w(norm(d));
   return n;
 }
 
@@ -96,99 +99,115 @@ RelaxReport relax(ParticleSet& p, const FluidDomain& domain, Lattice lattice,
   const auto t0 = std::chrono::steady_clock::now();
   check_support(p, o.support);
   RelaxReport rep;
-  const double h = o.support, h2 = h * h, dx = p.spacing;
+  const double h = o.support, dx = p.spacing, skin = 0.3 * dx;
+  const double reach2 = (h + skin) * (h + skin), h2 = h * h;
   const WendlandC2 w(p.dimension, h);
   const double n0 = reference_number_density(p.dimension, lattice, dx, h);
   rep.reference_number_density = n0;
-  // Fluid particles, and wall particles within half a support of their surface, move; deeper
-  // walls stay on the lattice as a fixed backing.
-  std::vector<int> fluid, moving;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind[i] == Kind::kFluid) fluid.push_back(static_cast<int>(i));
-    if (p.kind[i] == Kind::kFluid || p.distance[i] < 0.5 * h) moving.push_back(static_cast<int>(i));
+  double s0 = 0;
+  for (const Vec3& d : ideal_neighbours(p.dimension, lattice, dx, h)) {
+    const double r = norm(d);
+    s0 += w.f(r) * w.f(r) * r * r;
   }
-  CellGrid grid(domain.box, p.dimension, domain.periodic, h);
-  // Pressure P = (n / n0)^2 / n: the denser side of a pair pushes harder, so the fixed point is a
-  // uniform density, not only a vanishing kernel-gradient sum.
-  const auto pressure = [&](double n) { return n / (n0 * n0); };
-  // Stiffness of the move on the ideal lattice: a site displaced by eps comes back by k eps per
-  // unit step; the step 0.5 / k then halves a displacement each iteration.
-  double k_stiff = 0;
-  {
-    const double eps = 1e-3 * dx;
-    for (int a = 0; a < p.dimension; ++a) {
-      const double l = h + 4 * dx;
-      const Aabb box{{-l, -l, p.dimension == 3 ? -l : 0.0}, {l, l, p.dimension == 3 ? l : 0.0}};
-      const LatticeCells lat = make_lattice(p.dimension, lattice, dx, box, {});
-      Vec3 centre{1e300, 0, 0};
-      std::vector<Vec3> sites;
-      for (long kk = 0; kk < lat.n[2]; ++kk)
-        for (long j = 0; j < lat.n[1]; ++j)
-          for (long i = 0; i < lat.n[0]; ++i)
-            for (std::size_t b = 0; b < lat.basis.size(); ++b)
-              sites.push_back(lat.site(i, j, kk, b));
-      for (const Vec3& s : sites) {
-        if (norm2(s) < norm2(centre)) centre = s;
-      }
-      Vec3 moved = centre;
-      moved[a] += eps;
-      Vec3 delta;
-      for (const Vec3& s : sites) {
-        const Vec3 d = moved - s;
-        const double r = norm(d);
-        if (norm2(s - centre) > 0 && r < h) delta += 2 * pressure(n0) * w.f(r) * d;
-      }
-      k_stiff = std::max(k_stiff, -delta[a] / eps);
+  std::vector<int> fluid, slot(p.size(), -1);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind[i] == Kind::kFluid) {
+      slot[i] = static_cast<int>(fluid.size());
+      fluid.push_back(static_cast<int>(i));
     }
   }
-  if (!(k_stiff > 0)) throw NumericalFailure("relax: the kernel gives no restoring force");
-  const double lambda = o.step_factor / k_stiff;
-  const double cap = o.max_step * dx;
-  std::vector<double> n(p.size(), n0);
-  std::vector<Vec3> next(p.position);
-  for (int it = 0;; ++it) {
+  const std::size_t nf = fluid.size();
+  CellGrid grid(domain.box, p.dimension, domain.periodic, h + skin);
+  std::vector<std::vector<int>> nbr(nf);
+  std::vector<Vec3> at_build(nf);
+  const auto build_list = [&] {
     grid.build(p.position);
-    parallel_for(moving.size(), o.threads, [&](std::size_t f) {
-      const int i = moving[f];
-      double s = 0;
-      grid.for_neighbors(p.position[i], p.position, [&](int, Vec3 d) {
-        const double r2 = norm2(d);
-        if (r2 < h2) s += w.w(std::sqrt(r2));
-      });
-      n[i] = s;
-    });
-    const Errors e = density_errors(n, fluid, n0);
-    if (it == 0) rep.max_error_before = e.max, rep.rms_error_before = e.rms;
-    rep.max_error = e.max;
-    rep.rms_error = e.rms;
-    rep.iterations = it;
-    if (e.max < o.tolerance || it >= o.max_iterations) break;
-    parallel_for(moving.size(), o.threads, [&](std::size_t f) {
-      const int i = moving[f];
-      const double pi = pressure(n[i]);
-      Vec3 delta;
+    parallel_for(nf, o.threads, [&](std::size_t f) {
+      const int i = fluid[f];
+      nbr[f].clear();
       grid.for_neighbors(p.position[i], p.position, [&](int j, Vec3 d) {
-        const double r2 = norm2(d);
-        if (j != i && r2 < h2) delta += (pi + pressure(n[j])) * w.f(std::sqrt(r2)) * d;
+        if (j != i && norm2(d) < reach2) nbr[f].push_back(j);
       });
-      Vec3 step = lambda * delta;
-      if (norm(step) > cap) step = cap / norm(step) * step;
-      Vec3 x = grid.confine(p.position[i] + step);
-      if (p.distance[i] < std::numeric_limits<double>::infinity()) {
-        // Near a surface: each particle stays on its side, 0.1 dx clear of the surface (fluid
-        // inside the region, walls in their layer).
-        const double sd = fluid_signed_distance(domain, x);
-        const double margin = 0.1 * dx;
-        if (p.kind[i] == Kind::kFluid && sd > -margin) {
-          x = grid.confine(x - (sd + margin) * region_normal(domain, x));
-        } else if (p.kind[i] == Kind::kWall && sd < margin) {
-          x = grid.confine(x + (margin - sd) * region_normal(domain, x));
-        }
-      }
-      next[i] = x;
+      at_build[f] = p.position[i];
     });
-    for (int i : moving) p.position[i] = next[i];
+  };
+  // e = n / n0 - 1 of every fluid particle at positions x (fluid entries of x by slot).
+  const auto errors = [&](const std::vector<Vec3>& x, std::vector<double>& e) {
+    parallel_for(nf, o.threads, [&](std::size_t f) {
+      double s = w.w(0);
+      for (int j : nbr[f]) {
+        const Vec3 xj = slot[j] >= 0 ? x[slot[j]] : p.position[j];
+        const double r2 = norm2(grid.min_image(x[f] - xj));
+        if (r2 < h2) s += w.w(std::sqrt(r2));
+      }
+      e[f] = s / n0 - 1;
+    });
+    double sum = 0;
+    for (double v : e) sum += v * v;
+    return sum;
+  };
+  const auto summarize = [&](const std::vector<double>& e, double& max, double& rms) {
+    max = 0;
+    rms = 0;
+    for (double v : e) max = std::max(max, std::abs(v)), rms += v * v;
+    rms = nf ? std::sqrt(rms / static_cast<double>(nf)) : 0.0;
+  };
+  std::vector<Vec3> x(nf), trial(nf), dir(nf);
+  for (std::size_t f = 0; f < nf; ++f) x[f] = p.position[fluid[f]];
+  std::vector<double> e(nf), e_trial(nf);
+  build_list();
+  double energy = errors(x, e);
+  summarize(e, rep.max_error_before, rep.rms_error_before);
+  rep.max_error = rep.max_error_before;
+  rep.rms_error = rep.rms_error_before;
+  double eta = 0.5;
+  const double cap = o.max_step * dx;
+  for (int it = 0; it < o.max_iterations && rep.max_error >= o.tolerance; ++it) {
+    rep.iterations = it + 1;
+    parallel_for(nf, o.threads, [&](std::size_t f) {
+      Vec3 g;
+      for (int j : nbr[f]) {
+        const Vec3 xj = slot[j] >= 0 ? x[slot[j]] : p.position[j];
+        const Vec3 d = grid.min_image(x[f] - xj);
+        const double r2 = norm2(d);
+        if (r2 < h2) g += (e[f] + (slot[j] >= 0 ? e[slot[j]] : 0.0)) * w.f(std::sqrt(r2)) * d;
+      }
+      dir[f] = (n0 / s0) * g;
+    });
+    bool accepted = false;
+    for (int tries = 0; tries < 12 && !accepted; ++tries) {
+      parallel_for(nf, o.threads, [&](std::size_t f) {
+        Vec3 step = eta * dir[f];
+        if (norm(step) > cap) step = cap / norm(step) * step;
+        Vec3 y = grid.confine(x[f] + step);
+        if (p.distance[fluid[f]] < std::numeric_limits<double>::infinity()) {
+          const double sd = fluid_signed_distance(domain, y);
+          const double margin = 0.1 * dx;
+          if (sd > -margin) y = grid.confine(y - (sd + margin) * region_normal(domain, y));
+        }
+        trial[f] = y;
+      });
+      const double e2 = errors(trial, e_trial);
+      if (e2 < energy) {
+        accepted = true;
+        energy = e2;
+        x.swap(trial);
+        e.swap(e_trial);
+        eta = std::min(4.0, eta * 1.5);
+      } else {
+        eta *= 0.5;
+      }
+    }
+    if (!accepted) break;  // no descent at any step length: a (local) minimum
+    summarize(e, rep.max_error, rep.rms_error);
+    double moved = 0;
+    for (std::size_t f = 0; f < nf; ++f) moved = std::max(moved, norm2(x[f] - at_build[f]));
+    if (4 * moved > skin * skin) {
+      for (std::size_t f = 0; f < nf; ++f) p.position[fluid[f]] = x[f];
+      build_list();
+    }
   }
+  for (std::size_t f = 0; f < nf; ++f) p.position[fluid[f]] = x[f];
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;
 }

@@ -82,8 +82,6 @@ struct RelaxOptions {
   int max_iterations = 400;
   double tolerance = 0.01;  ///< stop when max |rho / rho_ref - 1| over fluid particles < this
   double max_step = 0.2;    ///< largest move per iteration [spacing]
-  /// Step as a fraction of the one that would undo a single displaced particle's offset at once.
-  double step_factor = 0.5;
   int threads = 0;
 };
 
@@ -101,9 +99,9 @@ std::vector<double> number_density(const ParticleSet& particles, const FluidDoma
                                    double support, int threads = 0);
 double reference_number_density(int dimension, Lattice lattice, double spacing, double support);
 
-/// Moves fluid particles (walls stay) down the gradient of a repulsive kernel potential with a
-/// density-weighted pressure, SPHinXsys-style, keeping them in the fluid region by the signed
-/// distance; returns the density error before and after.
+/// Moves the fluid particles (walls stay on the lattice) to minimise sum_i (n_i / n_ref - 1)^2 over
+/// the fluid, by Gauss-Newton-scaled gradient steps with a line search, keeping them in the fluid
+/// region by the signed distance (src/relax.cpp); returns the density error before and after.
 RelaxReport relax(ParticleSet& particles, const FluidDomain& domain, Lattice lattice,
                   const RelaxOptions& options);
 
