@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <numbers>
 
 #include "mesh_builders.hpp"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   // 1. STL torus R = 1, r = 0.35, 500 x 100 quads = 1e5 triangles.
   const std::string path = testing::temp_dir("bench") + "/torus.stl";
   testing::write_stl_binary(path, testing::torus_mesh({}, 1, 0.35, 500, 100));
+  const std::clock_t cpu0 = std::clock();
   auto t0 = std::chrono::steady_clock::now();
   const MeshFile mf = read_mesh(path, 3);
   const double t_read = seconds_since(t0);
@@ -42,6 +44,7 @@ int main(int argc, char** argv) {
   t0 = std::chrono::steady_clock::now();
   const ParticleSet p = fill(d, o);
   const double t_fill = seconds_since(t0);
+  const double cpu_stl = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   // 2. CSG: a union of 20 shapes (spheres, capsules, cylinders, tori) minus nothing, in a box.
   std::vector<ShapePtr> parts;
   for (int k = 0; k < 20; ++k) {
@@ -67,17 +70,19 @@ int main(int argc, char** argv) {
   FillOptions oc;
   oc.spacing = std::cbrt(27.0 / target);
   oc.wall_depth = 2.5 * oc.spacing;
+  const std::clock_t cpu1 = std::clock();
   t0 = std::chrono::steady_clock::now();
   const ParticleSet q = fill(c, oc);
   const double t_csg = seconds_since(t0);
+  const double cpu_csg = static_cast<double>(std::clock() - cpu1) / CLOCKS_PER_SEC;
   std::printf(
       "{\"stl\": {\"triangles\": %zu, \"read_s\": %.3f, \"bvh_s\": %.3f, \"fill_s\": %.3f, "
-      "\"fluid\": %zu, \"wall\": %zu, \"volume_error\": %.2e},\n"
-      " \"csg20\": {\"fill_s\": %.3f, \"fluid\": %zu, \"wall\": %zu}}\n",
-      mf.boundary.triangles.size(), t_read, t_bvh, t_fill, p.count(Kind::kFluid),
+      "\"cpu_s\": %.3f, \"fluid\": %zu, \"wall\": %zu, \"volume_error\": %.2e},\n"
+      " \"csg20\": {\"fill_s\": %.3f, \"cpu_s\": %.3f, \"fluid\": %zu, \"wall\": %zu}}\n",
+      mf.boundary.triangles.size(), t_read, t_bvh, t_fill, cpu_stl, p.count(Kind::kFluid),
       p.count(Kind::kWall),
       static_cast<double>(p.count(Kind::kFluid)) * std::pow(o.spacing, 3) / v_torus - 1, t_csg,
-      q.count(Kind::kFluid), q.count(Kind::kWall));
+      cpu_csg, q.count(Kind::kFluid), q.count(Kind::kWall));
   std::printf("geometry_bench: STL %zu tris -> %zu particles in %.2f s; CSG20 -> %zu in %.2f s\n",
               mf.boundary.triangles.size(), p.size(), t_read + t_bvh + t_fill, q.size(), t_csg);
   return 0;

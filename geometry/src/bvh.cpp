@@ -147,9 +147,9 @@ Vec3 Bvh::element_closest(const Element& e, Vec3 p) const {
   return dim_ == 3 ? closest_on_triangle(p, e[0], e[1], e[2]) : closest_on_segment(p, e[0], e[1]);
 }
 
-Bvh::Hit Bvh::closest(Vec3 p) const {
+Bvh::Hit Bvh::closest(Vec3 p, double max_distance2) const {
   Hit best;
-  best.distance2 = std::numeric_limits<double>::infinity();
+  best.distance2 = max_distance2;
   if (nodes_.empty()) return best;
   int stack[128];
   int top = 0;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "sadr/geometry/vec.hpp"
@@ -26,7 +27,9 @@ class Bvh {
     double distance2 = 0;
     int element = -1;  ///< index in the input order
   };
-  [[nodiscard]] Hit closest(Vec3 p) const;
+  /// Nearest element closer than sqrt(max_distance2); element = -1 if there is none.
+  [[nodiscard]] Hit closest(Vec3 p,
+                            double max_distance2 = std::numeric_limits<double>::infinity()) const;
   /// Unit normal of element i (input order): right-hand rule in 3D, (dy, -dx) in 2D.
   [[nodiscard]] Vec3 element_normal(int i) const;
 

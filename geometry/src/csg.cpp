@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Transforms (translate, rotate, scale) and CSG (union, intersection, difference).
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "sadr/common/status.hpp"
@@ -24,6 +25,9 @@ class Translated final : public Shape {
   Translated(ShapePtr s, Vec3 t) : s_(std::move(s)), t_(t) {}
   int dimension() const override { return s_->dimension(); }
   double signed_distance(Vec3 p) const override { return s_->signed_distance(p - t_); }
+  double signed_distance_bounded(Vec3 p, double limit) const override {
+    return s_->signed_distance_bounded(p - t_, limit);
+  }
   Vec3 normal(Vec3 p) const override { return s_->normal(p - t_); }
   bool inside(Vec3 p) const override { return s_->inside(p - t_); }
   Aabb bounds() const override {
@@ -48,6 +52,9 @@ class Rotated final : public Shape {
   }
   int dimension() const override { return s_->dimension(); }
   double signed_distance(Vec3 p) const override { return s_->signed_distance(inv(p)); }
+  double signed_distance_bounded(Vec3 p, double limit) const override {
+    return s_->signed_distance_bounded(inv(p), limit);
+  }
   Vec3 normal(Vec3 p) const override { return fwd(s_->normal(inv(p))); }
   bool inside(Vec3 p) const override { return s_->inside(inv(p)); }
   Aabb bounds() const override {
@@ -74,6 +81,9 @@ class Scaled final : public Shape {
   }
   int dimension() const override { return s_->dimension(); }
   double signed_distance(Vec3 p) const override { return min_ * s_->signed_distance(inv(p)); }
+  double signed_distance_bounded(Vec3 p, double limit) const override {
+    return min_ * s_->signed_distance_bounded(inv(p), limit / min_);
+  }
   Vec3 normal(Vec3 p) const override {
     const Vec3 n = s_->normal(inv(p));
     return normalized({n.x / f_.x, n.y / f_.y, n.z / f_.z});
@@ -114,9 +124,12 @@ class Csg final : public Shape {
     for (const auto& s : c_) child_box_.push_back(s->bounds());
   }
   int dimension() const override { return c_[0]->dimension(); }
-  double signed_distance(Vec3 p) const override { return eval(p).first; }
+  double signed_distance(Vec3 p) const override { return eval(p, kNoLimit).first; }
+  double signed_distance_bounded(Vec3 p, double limit) const override {
+    return eval(p, limit).first;
+  }
   Vec3 normal(Vec3 p) const override {
-    const auto [d, k] = eval(p);
+    const auto [d, k] = eval(p, kNoLimit);
     const Vec3 n = c_[k]->normal(p);
     return (op_ == Op::kDifference && k > 0) ? -n : n;
   }
@@ -124,7 +137,8 @@ class Csg final : public Shape {
 
  private:
   /// (distance, index of the selected child).
-  std::pair<double, std::size_t> eval(Vec3 p) const {
+  static constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+  std::pair<double, std::size_t> eval(Vec3 p, double limit) const {
     if (dimension() == 2) p.z = 0;
     double best = 0;
     std::size_t arg = 0;
@@ -132,7 +146,7 @@ class Csg final : public Shape {
       if (op_ == Op::kUnion) {
         // A child whose box is farther than the current (positive) best cannot be nearer.
         if (k > 0 && best > 0 && child_box_[k].distance2(p) >= best * best) continue;
-        const double d = c_[k]->signed_distance(p);
+        const double d = c_[k]->signed_distance_bounded(p, limit);
         if (k == 0 || d < best) best = d, arg = k;
       } else {
         const double d = (op_ == Op::kDifference && k > 0) ? -c_[k]->signed_distance(p)

@@ -50,11 +50,11 @@ class Filler {
     if (d_.dimension == 2) b.z = a.z;
     const Vec3 c = 0.5 * (a + b);
     const double reach = 0.5 * norm(b - a) + o_.wall_depth;
-    const double body_sd = d_.body ? d_.body->signed_distance(c) : -kInf;
+    const double body_sd = d_.body ? d_.body->signed_distance_bounded(c, reach) : -kInf;
     bool uniform = std::abs(body_sd) > reach;
     bool in_solid = false;
     for (std::size_t i = 0; uniform && i < d_.solids.size(); ++i) {
-      const double s = d_.solids[i].shape->signed_distance(c);
+      const double s = d_.solids[i].shape->signed_distance_bounded(c, reach);
       uniform = std::abs(s) > reach;
       in_solid = in_solid || s < 0;
     }
@@ -99,13 +99,15 @@ class Filler {
   }
   void site_by_site(std::array<long, 3> lo, std::array<long, 3> hi, std::vector<Site>& out) const {
     const double depth = o_.wall_depth;
+    // Distances beyond depth + spacing are not needed (fluid records +inf there).
+    const double limit = depth + o_.spacing;
     for_sites(lo, hi, [&](Vec3 x) {
-      const double body_sd = d_.body ? d_.body->signed_distance(x) : -kInf;
+      const double body_sd = d_.body ? d_.body->signed_distance_bounded(x, limit) : -kInf;
       double nearest = -body_sd;  // fluid: distance to the nearest surface
       int solid_in = -1;          // the solid with the shallowest depth containing x
       double solid_depth = kInf;
       for (std::size_t i = 0; i < d_.solids.size(); ++i) {
-        const double s = d_.solids[i].shape->signed_distance(x);
+        const double s = d_.solids[i].shape->signed_distance_bounded(x, limit);
         if (s < 0 && -s < solid_depth) solid_depth = -s, solid_in = static_cast<int>(i);
         nearest = std::min(nearest, s);
       }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "bvh.hpp"
@@ -96,6 +97,14 @@ MeshShape::Closest MeshShape::closest(Vec3 p) const {
 
 double MeshShape::signed_distance(Vec3 p) const {
   const double d = closest(p).distance;
+  return inside(p) ? -d : d;
+}
+
+double MeshShape::signed_distance_bounded(Vec3 p, double limit) const {
+  if (mesh_.dimension == 2) p.z = 0;
+  const double cut = std::nextafter(limit, std::numeric_limits<double>::infinity());
+  const auto hit = bvh_->closest(p, cut * cut);
+  const double d = hit.element >= 0 ? std::sqrt(hit.distance2) : cut;
   return inside(p) ? -d : d;
 }
 

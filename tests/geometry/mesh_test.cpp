@@ -84,6 +84,26 @@ TEST(MeshShape, ClosestPointAndSignedDistance) {
   EXPECT_GE(c.element, 0);
 }
 
+TEST(MeshShape, BoundedDistanceKeepsItsContract) {
+  const auto mesh = make_mesh_shape(sphere_mesh({0, 0, 0}, 1, 32));
+  const auto csg = csg_difference(translate(mesh, {0.5, 0, 0}), {make_sphere({1.5, 0, 0}, 0.5)});
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-2, 2);
+  for (int k = 0; k < 500; ++k) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    for (const Shape* s : {static_cast<const Shape*>(mesh.get()), csg.get()}) {
+      const double exact = s->signed_distance(p), b = s->signed_distance_bounded(p, 0.3);
+      if (std::abs(exact) <= 0.3) {
+        EXPECT_DOUBLE_EQ(b, exact);
+      } else {
+        EXPECT_EQ(b < 0, exact < 0);
+        EXPECT_GT(std::abs(b), 0.3);
+        EXPECT_LE(std::abs(b), std::abs(exact) + 1e-12);
+      }
+    }
+  }
+}
+
 TEST(MeshShape, InvertedNormalsAreFlippedAndSaid) {
   auto m = sphere_mesh({0, 0, 0}, 1, 16);
   for (auto& t : m.triangles) std::swap(t[1], t[2]);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "mesh_builders.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/geometry/particles.hpp"
 
@@ -74,6 +75,28 @@ TEST(Fill, WallLayersKnowTheirSurface) {
   const ParticleSet p1 = fill(d, o);
   ASSERT_EQ(p1.size(), p.size());
   for (std::size_t i = 0; i < p.size(); i += 97) EXPECT_EQ(p1.position[i].x, p.position[i].x);
+}
+
+TEST(Fill, TwoDimensionalMeshBodyWithWalls) {
+  FluidDomain d;
+  d.dimension = 2;
+  d.box = {{-1.2, -1.2, 0}, {1.2, 1.2, 0}};
+  d.body = make_mesh_shape(testing::circle_polyline({0, 0, 0}, 1, 512));
+  FillOptions o;
+  o.spacing = 0.02;
+  o.wall_depth = 0.06;
+  o.lattice = Lattice::kHexagonal;
+  const ParticleSet p = fill(d, o);
+  const double area = static_cast<double>(p.count(Kind::kFluid)) * o.spacing * o.spacing;
+  EXPECT_NEAR(area / kPi, 1, 0.01);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_EQ(p.position[i].z, 0);
+    if (p.kind[i] == Kind::kWall) {
+      EXPECT_NEAR(p.distance[i], norm(p.position[i]) - 1, 2e-4);  // chord error of 512 segments
+      EXPECT_LT(p.normal[i].x * p.position[i].x + p.normal[i].y * p.position[i].y, 0);
+    }
+  }
+  EXPECT_GT(p.count(Kind::kWall), 2 * 314u);
 }
 
 TEST(Fill, WallsNoFluidSeesAreDropped) {

@@ -55,6 +55,8 @@ class MeshShape final : public Shape {
 
   int dimension() const override { return mesh_.dimension; }
   double signed_distance(Vec3 p) const override;
+  /// Searches the BVH only within `limit`: far from the surface it costs the winding number only.
+  double signed_distance_bounded(Vec3 p, double limit) const override;
   Vec3 normal(Vec3 p) const override;
   /// winding_number(p) > 0.5.
   bool inside(Vec3 p) const override;

@@ -30,6 +30,13 @@ class Shape {
   [[nodiscard]] virtual int dimension() const = 0;
   /// Signed distance [length], negative inside (see the contract above).
   [[nodiscard]] virtual double signed_distance(Vec3 p) const = 0;
+  /// The signed distance where its magnitude is at most `limit`; elsewhere any value of the right
+  /// sign and magnitude above `limit` (and not above the true distance). Lets meshes and CSG skip
+  /// work far from the surface; the default is signed_distance.
+  [[nodiscard]] virtual double signed_distance_bounded(Vec3 p, double limit) const {
+    (void)limit;
+    return signed_distance(p);
+  }
   /// Outward unit normal of the nearest surface point (the gradient of the distance). The default
   /// takes central differences of signed_distance with a step 1e-6 of the bounding box size.
   [[nodiscard]] virtual Vec3 normal(Vec3 p) const;
