@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <unordered_map>
@@ -234,6 +235,10 @@ MeshFile read_mesh(const std::string& path, int dimension) {
   if (ext != ".msh" && ext != ".stl") {
     throw InvalidArgument(path + ": unsupported mesh format '" + ext +
                           "'; supported: .msh (gmsh v2, v4) and .stl (ASCII, binary)");
+  }
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw InvalidArgument(path + ": not a regular file (expected a mesh file)");
   }
   if (!std::ifstream(path, std::ios::binary).good()) {
     throw InvalidArgument(path + ": cannot open the mesh file (missing or unreadable)");

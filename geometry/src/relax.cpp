@@ -23,6 +23,16 @@ namespace sadr::geometry {
 namespace {
 
 void check_support(const ParticleSet& p, double support) {
+  const std::size_t n = p.position.size();
+  if (p.kind.size() != n || p.surface_id.size() != n || p.distance.size() != n ||
+      p.normal.size() != n || p.volume.size() != n) {
+    throw InvalidArgument("particle set: every array must have one entry per position (" +
+                          std::to_string(n) + "); use the output of fill()");
+  }
+  if (p.dimension != 2 && p.dimension != 3) {
+    throw InvalidArgument("particle set: dimension must be 2 or 3, got " +
+                          std::to_string(p.dimension));
+  }
   if (!(support > p.spacing) || !std::isfinite(support)) {
     throw InvalidArgument("kernel support must be finite and exceed the spacing " +
                           format_value(p.spacing) + ", got " + format_value(support));

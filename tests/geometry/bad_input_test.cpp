@@ -3,6 +3,7 @@
 // element or group) and what was expected.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "mesh_builders.hpp"
@@ -44,6 +45,7 @@ TEST(BadInput, MeshFilesAreRefusedWithFileAndReason) {
   const std::string dir = testing::temp_dir("bad");
   const BadCase cases[] = {
       {"missing.stl", nullptr, 3, nullptr, "cannot open"},
+      {"folder.stl", nullptr, 3, nullptr, "not a regular file"},
       {"shape.obj", "v 0 0 0\n", 3, nullptr, "unsupported mesh format '.obj'"},
       {"noext", "solid x\nendsolid x\n", 3, nullptr, "unsupported mesh format"},
       {"empty.stl", "solid x\nendsolid x\n", 3, nullptr, "empty mesh"},
@@ -59,6 +61,7 @@ TEST(BadInput, MeshFilesAreRefusedWithFileAndReason) {
       {"garbage.msh", "$MeshFormat\nthis is not a mesh\n", 2, nullptr, ""},
       {"dim.stl", "solid x\nendsolid x\n", 4, nullptr, "dimension must be 2 or 3"},
   };
+  std::filesystem::create_directories(dir + "/folder.stl");
   for (const BadCase& c : cases) {
     const std::string path = dir + "/" + c.file;
     if (c.content) std::ofstream(path) << c.content;

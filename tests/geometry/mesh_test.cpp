@@ -55,10 +55,8 @@ TEST(MeshShape, HolesClassifyCorrectlyAwayFromTheHole) {
   m.triangles.erase(m.triangles.begin() + static_cast<long>(n0 / 3),
                     m.triangles.begin() + static_cast<long>(n0 / 3 + 12));
   const auto mesh = make_mesh_shape(m);
-  const Vec3 hole = [&] {
-    const auto& t = sphere_mesh({0, 0, 0}, 1, 32).triangles[n0 / 3 + 6];
-    return sphere_mesh({0, 0, 0}, 1, 32).vertices[t[0]];
-  }();
+  const SurfaceMesh full = sphere_mesh({0, 0, 0}, 1, 32);
+  const Vec3 hole = full.vertices[full.triangles[n0 / 3 + 6][0]];
   std::mt19937_64 rng(2);
   std::uniform_real_distribution<double> u(-1.5, 1.5);
   int checked = 0;
