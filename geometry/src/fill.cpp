@@ -245,6 +245,7 @@ ParticleSet fill(const FluidDomain& domain, const FillOptions& options) {
     p.distance.push_back(s.distance);
     p.normal.push_back(s.normal);
     p.volume.push_back(v0);
+    p.mass.push_back(v0);
   }
   return p;
 }

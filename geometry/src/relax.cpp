@@ -25,7 +25,7 @@ namespace {
 void check_support(const ParticleSet& p, double support) {
   const std::size_t n = p.position.size();
   if (p.kind.size() != n || p.surface_id.size() != n || p.distance.size() != n ||
-      p.normal.size() != n || p.volume.size() != n) {
+      p.normal.size() != n || p.volume.size() != n || p.mass.size() != n) {
     throw InvalidArgument("particle set: every array must have one entry per position (" +
                           std::to_string(n) + "); use the output of fill()");
   }
@@ -223,7 +223,11 @@ RelaxReport relax(ParticleSet& p, const FluidDomain& domain, Lattice lattice,
 }
 
 double assign_volumes(ParticleSet& p, const FluidDomain& domain, double support,
-                      double domain_volume, int threads) {
+                      double domain_volume, double rest_density, int threads) {
+  if (!(rest_density > 0) || !std::isfinite(rest_density)) {
+    throw InvalidArgument("assign_volumes: rest_density must be finite and > 0, got " +
+                          format_value(rest_density));
+  }
   if (!(domain_volume > 0) || !std::isfinite(domain_volume)) {
     throw InvalidArgument("assign_volumes: domain_volume must be finite and > 0, got " +
                           format_value(domain_volume));
@@ -235,8 +239,10 @@ double assign_volumes(ParticleSet& p, const FluidDomain& domain, double support,
   }
   if (!(sum > 0)) throw InvalidArgument("assign_volumes: there are no fluid particles");
   const double scale = domain_volume / sum;
+  p.mass.resize(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.kind[i] == Kind::kFluid) p.volume[i] = scale / n[i];
+    p.mass[i] = rest_density * p.volume[i];
   }
   return scale;
 }

@@ -121,12 +121,13 @@ TEST(Fill, VolumesSumToTheDomainVolume) {
   o.wall_depth = 2.5 / 16;
   ParticleSet p = fill(d, o);
   const double exact = 1 - 4.0 / 3.0 * kPi * 0.008;
-  const double scale = assign_volumes(p, d, 2.5 / 16, exact);
-  double sum = 0;
+  const double scale = assign_volumes(p, d, 2.5 / 16, exact, 1000.0);
+  double sum = 0, mass = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind[i] == Kind::kFluid) sum += p.volume[i];
+    if (p.kind[i] == Kind::kFluid) sum += p.volume[i], mass += p.mass[i];
   }
   EXPECT_NEAR(sum, exact, 1e-12);
+  EXPECT_NEAR(mass, 1000.0 * exact, 1e-9);
   EXPECT_NEAR(scale, 1, 0.05);
 }
 

@@ -62,6 +62,8 @@ struct ParticleSet {
   std::vector<Vec3> normal;
   /// Volume [length^d]: spacing^d after fill(); set by assign_volumes().
   std::vector<double> volume;
+  /// Mass [mass]: rest_density * volume (fill() uses rest density 1; assign_volumes() sets it).
+  std::vector<double> mass;
 
   [[nodiscard]] std::size_t size() const { return position.size(); }
   [[nodiscard]] std::size_t count(Kind k) const;
@@ -107,8 +109,9 @@ RelaxReport relax(ParticleSet& particles, const FluidDomain& domain, Lattice lat
 
 /// Fluid volumes V_i = 1 / n_i scaled so that they sum to `domain_volume` (the exact volume when
 /// the caller knows it, else N_fluid * spacing^d); walls keep spacing^d. Masses are
-/// rho_0 * volume. Returns the scale factor applied.
+/// rest_density * volume for every particle, so the fluid's total mass is rest_density times the
+/// domain volume. Returns the scale factor applied to 1 / n_i.
 double assign_volumes(ParticleSet& particles, const FluidDomain& domain, double support,
-                      double domain_volume, int threads = 0);
+                      double domain_volume, double rest_density = 1.0, int threads = 0);
 
 }  // namespace sadr::geometry
