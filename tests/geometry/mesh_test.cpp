@@ -233,10 +233,11 @@ TEST(MeshIo, GmshPhysicalGroupsByNameV2AndV4) {
   }
 }
 
-// A unit cube [0,1]^3 split into 6 tetrahedra (Kuhn), physical volume "cell".
+// A unit cube [0,1]^3 split into 6 tetrahedra (Kuhn), physical volume "cell", its face z = 0 the
+// physical surface "bottom".
 TEST(MeshIo, GmshVolumeRegionIsTheBoundaryOfItsTetrahedra) {
   std::string text =
-      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 7 \"cell\"\n"
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 8 \"bottom\"\n3 7 \"cell\"\n"
       "$EndPhysicalNames\n$Nodes\n8\n";
   for (int i = 0; i < 8; ++i) {
     text += std::to_string(i + 1) + " " + std::to_string(i & 1) + " " +
@@ -244,14 +245,15 @@ TEST(MeshIo, GmshVolumeRegionIsTheBoundaryOfItsTetrahedra) {
   }
   // Kuhn triangulation: paths 0 -> 7 through the permutations of the axes.
   const int perms[6][3] = {{1, 2, 4}, {1, 4, 2}, {2, 1, 4}, {2, 4, 1}, {4, 1, 2}, {4, 2, 1}};
-  text += "$EndNodes\n$Elements\n6\n";
+  text += "$EndNodes\n$Elements\n8\n";
   for (int t = 0; t < 6; ++t) {
     const int a = 0, b = perms[t][0], c = b + perms[t][1], d = 7;
     text += std::to_string(t + 1) + " 4 2 7 1 " + std::to_string(a + 1) + " " +
             std::to_string(b + 1) + " " + std::to_string(c + 1) + " " + std::to_string(d + 1) +
             "\n";
   }
-  text += "$EndElements\n";
+  // The face z = 0 (nodes 1, 2, 4, 3) as physical surface "bottom".
+  text += "7 2 2 8 2 1 2 4\n8 2 2 8 2 1 4 3\n$EndElements\n";
   const std::string path = testing::temp_dir("tet") + "/cube.msh";
   std::ofstream(path) << text;
   const MeshFile mf = read_mesh(path, 3);
@@ -261,6 +263,12 @@ TEST(MeshIo, GmshVolumeRegionIsTheBoundaryOfItsTetrahedra) {
   EXPECT_TRUE(cell->inside({0.2, 0.7, 0.4}));
   EXPECT_FALSE(cell->inside({1.2, 0.7, 0.4}));
   EXPECT_NEAR(cell->signed_distance({0.5, 0.5, 0.9}), -0.1, 1e-12);
+  const SurfaceMesh& bottom = mf.surface("bottom");
+  EXPECT_EQ(bottom.triangles.size(), 2u);
+  for (const auto& t : bottom.triangles) {
+    for (int v : t) EXPECT_EQ(bottom.vertices[v].z, 0);
+  }
+  EXPECT_EQ(mf.surface_names(), std::vector<std::string>{"bottom"});
 }
 
 }  // namespace
