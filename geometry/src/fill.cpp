@@ -16,6 +16,21 @@ std::size_t ParticleSet::count(Kind k) const {
   return static_cast<std::size_t>(std::count(kind.begin(), kind.end(), k));
 }
 
+std::pair<double, int> nearest_surface(const FluidDomain& domain, Vec3 x, double limit) {
+  double nearest = std::numeric_limits<double>::infinity();
+  int id = -1;
+  if (domain.body) {
+    nearest = -domain.body->signed_distance_bounded(x, limit);
+    id = domain.body_surface_id;
+  }
+  for (const auto& s : domain.solids) {
+    const double d = s.shape->signed_distance_bounded(x, limit);
+    if (d < nearest) nearest = d, id = s.surface_id;
+  }
+  if (nearest <= limit) return {nearest, id};
+  return {std::numeric_limits<double>::infinity(), -1};
+}
+
 double fluid_signed_distance(const FluidDomain& domain, Vec3 p) {
   double d =
       domain.body ? domain.body->signed_distance(p) : -std::numeric_limits<double>::infinity();
@@ -49,7 +64,8 @@ class Filler {
     Vec3 b = lat_.origin + Vec3{hi[0] * lat_.cell.x, hi[1] * lat_.cell.y, hi[2] * lat_.cell.z};
     if (d_.dimension == 2) b.z = a.z;
     const Vec3 c = 0.5 * (a + b);
-    const double reach = 0.5 * norm(b - a) + o_.wall_depth;
+    // Culled blocks hold no wall and no fluid within wall_depth + spacing of a surface.
+    const double reach = 0.5 * norm(b - a) + o_.wall_depth + o_.spacing;
     const double body_sd = d_.body ? d_.body->signed_distance_bounded(c, reach) : -kInf;
     bool uniform = std::abs(body_sd) > reach;
     bool in_solid = false;
@@ -103,16 +119,22 @@ class Filler {
     const double limit = depth + o_.spacing;
     for_sites(lo, hi, [&](Vec3 x) {
       const double body_sd = d_.body ? d_.body->signed_distance_bounded(x, limit) : -kInf;
-      double nearest = -body_sd;  // fluid: distance to the nearest surface
-      int solid_in = -1;          // the solid with the shallowest depth containing x
+      // Fluid: distance to the nearest surface and its id.
+      double nearest = d_.body ? -body_sd : kInf;
+      int nearest_id = d_.body ? d_.body_surface_id : -1;
+      int solid_in = -1;  // the solid with the shallowest depth containing x
       double solid_depth = kInf;
       for (std::size_t i = 0; i < d_.solids.size(); ++i) {
         const double s = d_.solids[i].shape->signed_distance_bounded(x, limit);
         if (s < 0 && -s < solid_depth) solid_depth = -s, solid_in = static_cast<int>(i);
-        nearest = std::min(nearest, s);
+        if (s < nearest) nearest = s, nearest_id = d_.solids[i].surface_id;
       }
       if (body_sd < 0 && solid_in < 0) {
-        out.push_back({x, Kind::kFluid, -1, nearest <= depth + o_.spacing ? nearest : kInf, {}});
+        if (nearest <= limit) {
+          out.push_back({x, Kind::kFluid, nearest_id, nearest, {}});
+        } else {
+          out.push_back({x, Kind::kFluid, -1, kInf, {}});
+        }
         return;
       }
       const bool body_wall = d_.body && body_sd >= 0 && body_sd <= depth;

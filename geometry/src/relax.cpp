@@ -218,6 +218,14 @@ RelaxReport relax(ParticleSet& p, const FluidDomain& domain, Lattice lattice,
     }
   }
   for (std::size_t f = 0; f < nf; ++f) p.position[fluid[f]] = x[f];
+  // Near-surface fluid particles moved: their distance and nearest surface again.
+  parallel_for(nf, o.threads, [&](std::size_t f) {
+    const int i = fluid[f];
+    if (p.distance[i] == std::numeric_limits<double>::infinity()) return;
+    const auto [dist, id] = nearest_surface(domain, p.position[i], h + dx);
+    p.distance[i] = dist;
+    p.surface_id[i] = id;
+  });
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rep;
 }

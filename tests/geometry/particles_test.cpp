@@ -50,6 +50,16 @@ TEST(Fill, WallLayersKnowTheirSurface) {
     if (p.kind[i] == Kind::kFluid) {
       EXPECT_LT(norm(x), 0.9);
       EXPECT_FALSE(d.solids[0].shape->inside(x));
+      // Fluid near a surface knows which one and how far.
+      if (p.surface_id[i] == 5) {
+        EXPECT_NEAR(p.distance[i], 0.9 - norm(x), 1e-12);
+      } else if (p.surface_id[i] == 7) {
+        EXPECT_NEAR(p.distance[i], d.solids[0].shape->signed_distance(x), 1e-12);
+      } else {
+        EXPECT_EQ(p.surface_id[i], -1);
+        EXPECT_GT(std::min(0.9 - norm(x), d.solids[0].shape->signed_distance(x)),
+                  o.wall_depth + o.spacing);
+      }
       continue;
     }
     EXPECT_LE(p.distance[i], o.wall_depth + 1e-12);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 #include <random>
 
 #include "sadr/geometry/particles.hpp"
@@ -42,6 +43,9 @@ RelaxReport run(const FluidDomain& d, double dx, double h_over_dx, const char* n
     if (p.kind[i] == Kind::kFluid) {
       worst = std::max(worst, std::abs(n[i] / rep.reference_number_density - 1));
       EXPECT_LT(fluid_signed_distance(d, p.position[i]), 0) << "particle left the fluid";
+      if (p.distance[i] < std::numeric_limits<double>::infinity()) {  // updated after the moves
+        EXPECT_NEAR(p.distance[i], nearest_surface(d, p.position[i], r.support + dx).first, 1e-12);
+      }
     }
   }
   EXPECT_NEAR(worst, rep.max_error, 1e-12);

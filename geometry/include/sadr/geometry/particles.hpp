@@ -8,6 +8,7 @@
 
 #include <array>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "sadr/geometry/shape.hpp"
@@ -52,11 +53,13 @@ struct ParticleSet {
   std::vector<Vec3> position;
   std::vector<Kind> kind;
   /// Wall particles: the surface behind which they sit (SolidBody::surface_id or
-  /// FluidDomain::body_surface_id); fluid particles: -1.
+  /// FluidDomain::body_surface_id). Fluid particles: the nearest surface if it lies within
+  /// wall_depth + spacing (so "the fluid next to surface s" is kind == fluid, surface_id == s,
+  /// distance < spacing), else -1.
   std::vector<int> surface_id;
   /// Wall particles: depth behind their surface (>= 0, the shape's distance, see shape.hpp);
   /// fluid particles: distance to the nearest surface (>= 0), or +inf if none within
-  /// wall_depth + spacing.
+  /// wall_depth + spacing (relax() updates it for the particles it moves).
   std::vector<double> distance;
   /// Wall particles: unit normal of their surface pointing into the fluid; fluid: (0, 0, 0).
   std::vector<Vec3> normal;
@@ -68,6 +71,10 @@ struct ParticleSet {
   [[nodiscard]] std::size_t size() const { return position.size(); }
   [[nodiscard]] std::size_t count(Kind k) const;
 };
+
+/// Distance from the fluid point x to the nearest surface of the fluid region (the body's or a
+/// solid's) and that surface's id, when within `limit`; else (+inf, -1).
+std::pair<double, int> nearest_surface(const FluidDomain& domain, Vec3 x, double limit);
 
 /// Signed distance to the fluid region's boundary: max(body, -solid_1, -solid_2, ...),
 /// negative in the fluid (the box's faces do not count). Same contract as Shape.
