@@ -136,11 +136,20 @@ inline void write_stl_ascii(const std::string& path, const SurfaceMesh& m) {
   f << "endsolid test\n";
 }
 
-/// A fresh temporary directory for one test's files.
+/// A fresh temporary directory for one test's files (per process), removed at exit.
 inline std::string temp_dir(const std::string& name) {
+  struct Cleanup {
+    std::vector<std::string> dirs;
+    ~Cleanup() {
+      std::error_code ec;
+      for (const auto& d : dirs) std::filesystem::remove_all(d, ec);
+    }
+  };
+  static Cleanup cleanup;
   const std::string d = std::string("/tmp/sadr_geometry_") + name + "_" +
                         std::to_string(static_cast<long>(::getpid()));
   std::filesystem::create_directories(d);
+  cleanup.dirs.push_back(d);
   return d;
 }
 
