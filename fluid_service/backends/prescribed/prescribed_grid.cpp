@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "sadr/common/input_file.hpp"
 #include "sadr/common/status.hpp"
 
 namespace sadr::fluid {
@@ -65,6 +66,11 @@ GridField GridField::read(const std::string& path, const Box& box) {
   g.dim_ = box.dimension;
   g.path_ = path;
   const int d = box.dimension;
+  try {
+    require_regular_file(path, kMaxDataFileBytes, "prescribed.field_file");
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(e.what(), {{"field", "field_file"}, {"value", path}});
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw InvalidArgument("prescribed.field_file: cannot open '" + path + "'",

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "sadr/common/input_file.hpp"
 #include "sadr/common/status.hpp"
 
 namespace sadr::orchestrator {
@@ -18,7 +19,9 @@ std::string content_hash(std::string_view bytes) {
   return buf;
 }
 
-std::string read_file_bytes(const std::filesystem::path& path) {
+std::string read_file_bytes(const std::filesystem::path& path, std::uintmax_t max_bytes,
+                            std::string_view what) {
+  require_regular_file(path, max_bytes, what);
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw InvalidArgument("cannot open '" + path.string() + "': " + std::strerror(errno));

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 
+#include "sadr/common/input_file.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/fluid/backend_schema.hpp"
 #include "scene_parts.hpp"
@@ -183,6 +184,12 @@ void read_parameters(SceneContext& ctx, const Field& f, const schema::Backend* b
       if (!std::ifstream(path)) {
         r.error(at, "cannot open '" + path.string() +
                         "'; allowed: a readable file (paths are relative to the scene file)");
+        continue;
+      }
+      try {
+        require_regular_file(path, kMaxDataFileBytes, "file");
+      } catch (const InvalidArgument& e) {
+        r.error(at, std::string(e.what()) + " (paths are relative to the scene file)");
         continue;
       }
       ctx.scene.fluid.files[key] = path.string();

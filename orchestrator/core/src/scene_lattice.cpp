@@ -9,6 +9,8 @@
 #include <map>
 #include <sstream>
 
+#include "sadr/common/input_file.hpp"
+#include "sadr/common/status.hpp"
 #include "sadr/orchestrator/work_estimate.hpp"
 #include "scene_parts.hpp"
 
@@ -190,6 +192,13 @@ void read_particle_file(SceneContext& ctx, const Field& file_field, const std::s
   Scene& s = ctx.scene;
   const std::filesystem::path path =
       std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : ctx.base_dir / name;
+  try {
+    require_regular_file(path, kMaxDataFileBytes, "particle file");
+  } catch (const InvalidArgument& e) {
+    r.error(file_field,
+            std::string(e.what()) + " (paths are relative to the scene file's directory)");
+    return;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     r.error(file_field, "cannot open particle file '" + path.string() +

@@ -3,6 +3,7 @@
 
 #include <array>
 
+#include "sadr/common/input_file.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/orchestrator/hash.hpp"
 #include "yaml_reader.hpp"
@@ -186,7 +187,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::filesystem::path&
 }
 
 SweepSpec load_sweep_spec(const std::filesystem::path& path) {
-  return parse_sweep_spec(read_file_bytes(path), path);
+  return parse_sweep_spec(read_file_bytes(path, kMaxSceneFileBytes, "sweep file"), path);
 }
 
 std::string_view to_string(KeepPolicy keep) {

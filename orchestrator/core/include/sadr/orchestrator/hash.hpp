@@ -4,7 +4,6 @@
 /// Not cryptographic: it detects accidental mismatches, not tampering.
 #pragma once
 
-#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -27,7 +26,9 @@ std::string content_hash(std::string_view bytes);
 /// content_hash() of a file's bytes. @throws sadr::InvalidArgument if unreadable.
 std::string file_hash(const std::filesystem::path& path);
 
-/// The whole file as bytes. @throws sadr::InvalidArgument naming the path.
-std::string read_file_bytes(const std::filesystem::path& path);
+/// The whole file as bytes. @throws sadr::InvalidArgument naming the path (and `what`) when it
+/// cannot be read, is not a regular file, or holds more than max_bytes (input_file.hpp).
+std::string read_file_bytes(const std::filesystem::path& path,
+                            std::uintmax_t max_bytes = UINTMAX_MAX, std::string_view what = "file");
 
 }  // namespace sadr::orchestrator
