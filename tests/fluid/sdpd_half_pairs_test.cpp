@@ -15,8 +15,8 @@
 #include "sadr/fluid/pair_noise_batch.hpp"
 #include "sadr/fluid/pair_terms.hpp"
 #include "sadr/fluid/parallel.hpp"
-#include "sadr/fluid/sdpd_pair_block.hpp"
 #include "sdpd/sdpd_backend.hpp"
+#include "sdpd/sdpd_pair_block.hpp"
 #ifdef SADR_HAVE_OPENMP
 #include <omp.h>
 #endif

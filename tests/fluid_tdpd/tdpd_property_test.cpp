@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "backend_generic_scene.hpp"
+#include "backend_contract_scene.hpp"
 #include "tdpd/tdpd_backend.hpp"
 
 namespace sadr::fluid {

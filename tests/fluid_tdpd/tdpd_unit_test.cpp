@@ -217,7 +217,7 @@ TEST(TdpdUnit, RegisteredUnderItsName) {
   if (!reg.contains("tdpd")) register_tdpd_backend(reg);  // once the lead lists it
   auto b = reg.create("tdpd");
   EXPECT_EQ(b->name(), "tdpd");
-  EXPECT_TRUE(b->capabilities().exact_restart);
+  EXPECT_TRUE(b->capabilities().moves_particles);
 }
 
 TEST(TdpdUnit, SetConcentrationsRefreshesTheFluxes) {

@@ -51,7 +51,6 @@ struct PrescribedField {
 class PrescribedBackend final : public BackendBase {
  public:
   [[nodiscard]] std::string_view name() const override { return "prescribed"; }
-  [[nodiscard]] Capabilities capabilities() const override { return {true, true, false, true}; }
   [[nodiscard]] double time() const override { return time_; }
   [[nodiscard]] const PrescribedField& field() const { return field_; }
   /// The species operator's limits (diffusion, reaction) at the current positions under

@@ -29,20 +29,20 @@
 #include "sadr/fluid/kernel.hpp"
 #include "sadr/fluid/neighbor_list.hpp"
 #include "sadr/fluid/pair_terms.hpp"
-#include "sadr/fluid/sdpd_pair_block.hpp"
 #include "sadr/fluid/slab_scheduler.hpp"
 #include "sadr/fluid/species_transport.hpp"
 #include "sadr/fluid/stability.hpp"
 #include "sadr/fluid/tait_eos.hpp"
 #include "sdpd_morris_walls.hpp"
 #include "sdpd_open_boundary.hpp"
+#include "sdpd_pair_block.hpp"
+#include "sdpd_pair_physics.hpp"
 
 namespace sadr::fluid {
 
 class SdpdBackend final : public BackendBase {
  public:
   [[nodiscard]] std::string_view name() const override { return "sdpd"; }
-  [[nodiscard]] Capabilities capabilities() const override { return {true, true, true, true}; }
   [[nodiscard]] double time() const override { return time_; }
 
   /// Rates of change at one state (public for the tests of the pair loop).
@@ -229,6 +229,10 @@ class SdpdBackend final : public BackendBase {
   void apply_open_boundary(double dt);
 
   static constexpr std::uint32_t kMaxSubsteps = 65535;  ///< noise key: (step << 16) | substep
+  /// The NumericalFailure of a coupling step that needs more than kMaxSubsteps sub-steps,
+  /// naming the binding limit and the scene key that shortens the step.
+  [[noreturn]] static void throw_too_many_substeps(std::uint64_t step_index,
+                                                   const std::string& limit_name, double limit);
 
   FluidModel model_;
   Kernel kernel_;

@@ -90,10 +90,7 @@ double SdpdBackend::fused_substep(std::uint64_t step_index, std::uint64_t key, d
             limits_from(vmax2, rho_min, amax2, 2.0 * c_d * max_visc, 0.0, y_), model_.max_time_step,
             model_.force_time_step, remaining, stable, criterion);
         if (sub >= kMaxSubsteps) {
-          throw NumericalFailure("sdpd: more than 65535 sub-steps needed in one advance (limit '" +
-                                     s.limit_name + "' = " + format_value(s.limit) +
-                                     "); use a smaller coupling time_step",
-                                 {{"step", std::to_string(step_index)}, {"limit", s.limit_name}});
+          throw_too_many_substeps(step_index, s.limit_name, s.limit);
         }
         my_dt = s.dt;
       } catch (...) {

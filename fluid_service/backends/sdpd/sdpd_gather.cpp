@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 /// \file sdpd_gather.cpp
 /// The SDPD pair loop over full neighbour lists, for systems with wall particles, Morris walls,
-/// transported species or reactions: each particle gathers the evaluators of pair_terms.hpp
-/// (SdpdMomentumTerm, ContinuityTerm, PairNoise, DiffusionTerm) over its own list, in list order,
-/// so every sum is independent of the thread count. Bulk fluids take the half path
-/// (sdpd_half_path.cpp, each pair once).
+/// transported species or reactions: each particle gathers the evaluators of sdpd_pair_physics.hpp
+/// and pair_terms.hpp (SdpdMomentumTerm, ContinuityTerm, PairNoise, DiffusionTerm) over its own
+/// list, in list order, so every sum is independent of the thread count. Bulk fluids take the half
+/// path (sdpd_half_path.cpp, each pair once).
 #include <algorithm>
 #include <cmath>
 #include <span>
@@ -229,9 +229,8 @@ void SdpdBackend::gather_pairs(std::size_t i, const Y& y, const GatherTerms& t, 
     s.f_sum += g.f * inv_nd_[j];
     if (t.noise_on) {
       // force_i = sign sqrt(amp2/2) (z0, z1, z2) + sqrt(amp2/2)/r x_ij z3 (PairNoise::add)
-      // sqrt(amp2/2) = sqrt(2 k_B T c_D eta) sqrt(F_ij) sqrt(1/d_i) sqrt(1/d_j), the last
-      // product formed symmetrically so both sides of the pair get the same value.
-      const double amp = (t.noise_amp * kernel_.sqrt_f(g.r)) * (sqrt_inv_nd_[i] * sqrt_inv_nd_[j]);
+      const double amp =
+          sdpd::noise_amplitude(t.noise_amp, kernel_.sqrt_f(g.r), sqrt_inv_nd_[i], sqrt_inv_nd_[j]);
       b.j[s.npairs] = j;
       b.amp[s.npairs] = i < j ? amp : -amp;
       b.amp_r[s.npairs] = amp / g.r;

@@ -69,8 +69,9 @@ SADR_SIDE_CLONES void half_side_terms(const SdpdPairBlock& b,
       const double m_i_k = kLanes ? mi[k] : p.m_i;
       const double vol_i_k = kLanes ? voli[k] : p.vol_i;
       const double rho_i_k = kLanes ? rhoi[k] : p.rho_i;
-      dj[k] = -m_i_k * f[k] * xv +
-              p.two_dhc0 * vol_i_k * (rho_i_k - rhoj[k]) * f[k] * r2[k] / (r2[k] + p.eps);
+      // i <-> j of the i side: rho_i_k is "rho_j" here and rhoj[k] "rho_i"
+      dj[k] =
+          sdpd::density_rate(m_i_k, f[k], xv, p.two_dhc0, vol_i_k, rhoj[k], rho_i_k, r2[k], p.eps);
     }
   }
   if (noise) {

@@ -78,10 +78,7 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
                                     remaining, rep.stable_dt, rep.limiting_criterion);
   const double dt = next.dt;
   if (sub >= kMaxSubsteps) {
-    throw NumericalFailure("sdpd: more than 65535 sub-steps needed in one advance (limit '" +
-                               next.limit_name + "' = " + format_value(next.limit) +
-                               "); use a smaller coupling time_step",
-                           {{"step", std::to_string(step_index)}, {"limit", next.limit_name}});
+    throw_too_many_substeps(step_index, next.limit_name, next.limit);
   }
   const double sdt = std::sqrt(dt);
   const bool noise_on = !r0_.acc_noise.empty();

@@ -59,6 +59,15 @@ StabilityLimits SdpdBackend::limits_from(double vmax2, double rho_min, double am
   return lim;
 }
 
+void SdpdBackend::throw_too_many_substeps(std::uint64_t step_index, const std::string& limit_name,
+                                          double limit) {
+  throw NumericalFailure("sdpd: more than " + std::to_string(kMaxSubsteps) +
+                             " sub-steps needed in one coupling step (limit '" + limit_name +
+                             "' = " + format_value(limit) +
+                             "); shorten time.coupling_step in the scene",
+                         {{"step", std::to_string(step_index)}, {"limit", limit_name}});
+}
+
 StabilityLimits SdpdBackend::current_limits() {
   require_initialized("current_limits");
   // On copies: evaluate() writes the summation densities into its Y, and r0_ is the step's.

@@ -17,7 +17,6 @@ namespace sadr::fluid {
 class StaticBackend final : public BackendBase {
  public:
   [[nodiscard]] std::string_view name() const override { return "static"; }
-  [[nodiscard]] Capabilities capabilities() const override { return {false, true, false, true}; }
   [[nodiscard]] double time() const override { return time_; }
   /// Stability limits at the current concentrations.
   [[nodiscard]] StabilityLimits current_limits() const;

@@ -69,7 +69,6 @@ struct TdpdParameters {
 class TdpdBackend final : public BackendBase {
  public:
   [[nodiscard]] std::string_view name() const override { return "tdpd"; }
-  [[nodiscard]] Capabilities capabilities() const override { return {true, true, true, true}; }
   /// Parameters used by the next initialize() (defaults: the li2015 calibration set).
   void set_parameters(const TdpdParameters& p) { params_ = p; }
   [[nodiscard]] const TdpdParameters& parameters() const { return params_; }

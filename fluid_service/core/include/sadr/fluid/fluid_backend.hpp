@@ -11,18 +11,11 @@
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/fluid/backend_schema.hpp"
 #include "sadr/fluid/fluid_model.hpp"
 #include "sadr/fluid/stability.hpp"
 
 namespace sadr::fluid {
-
-/// What a backend can do (flags, not speed numbers).
-struct Capabilities {
-  bool moves_particles = false;     ///< positions/velocities evolve
-  bool transports_species = false;  ///< integrates deterministic species (diffusion + reactions)
-  bool thermal_noise = false;       ///< honours FluidModel::temperature > 0
-  bool exact_restart = false;       ///< save()/restore() continue bit-identically
-};
 
 /// Health and progress of one advance() call.
 struct StepReport {
@@ -53,7 +46,10 @@ class FluidBackend {
  public:
   virtual ~FluidBackend() = default;
   [[nodiscard]] virtual std::string_view name() const = 0;
-  [[nodiscard]] virtual Capabilities capabilities() const = 0;
+  /// What this backend does: its entry in the backend schema (backend_schema.hpp), the one
+  /// description that the scene loader, `sadr backends` and the tests read. Throws Internal if
+  /// the backend has no entry (every backend of SADR_FLUID_BACKENDS has one).
+  [[nodiscard]] const schema::Capabilities& capabilities() const;
   /// Validates everything (InvalidArgument naming field, value and range) and sets time = 0.
   virtual void initialize(const FluidModel& model, const ParticleState& initial,
                           const std::vector<std::vector<double>>& concentrations) = 0;

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 /// \file pair_terms.hpp
-/// SDPD pair physics as small evaluators (one term, one struct), each with its equation.
-/// All are evaluated from the side of particle i in a gather loop over a full
-/// neighbour list; every term is exactly antisymmetric (forces) or symmetric
-/// (coefficients) under i <-> j, so momentum and species mass are conserved to round-off.
+/// Pair terms every particle backend may use (one term, one struct), each with its equation:
+/// the pair geometry, the species diffusion coefficient and the thermal pair noise. They are
+/// evaluated from the side of particle i in a gather loop over a full neighbour list; every
+/// term is exactly antisymmetric (forces) or symmetric (coefficients) under i <-> j, so
+/// momentum and species mass are conserved to round-off. The SDPD momentum and continuity
+/// terms are the sdpd backend's (backends/sdpd/sdpd_pair_physics.hpp).
 ///
 /// Notation (docs/method.md section 2): x_ij = x_i - x_j, r = |x_ij|, e_ij = x_ij / r,
 /// v_ij = v_i - v_j, F_ij = -(1/r) dW/dr >= 0, number density d_i = rho_i / m_i.
@@ -29,56 +31,6 @@ struct PairGeometry {
   double r;                 ///< |x_ij|
   double f;                 ///< F_ij [1/length^(d+2)]
   double inv_r2;            ///< 1/|x_ij|^2
-};
-
-/// Espanol & Revenga (2003) isothermal SDPD momentum, in the LAMMPS
-/// `sdpd/taitwater/isothermal` form (docs/method.md (16)):
-/// \f$ m_i \dot v_i = \sum_j (P_i/d_i^2 + P_j/d_j^2) F_{ij} x_{ij}
-///      - \frac{5\eta}{3} \sum_j \frac{F_{ij}}{d_i d_j}\,[v_{ij} + e_{ij}(e_{ij}\cdot v_{ij})] \f$.
-struct SdpdMomentumTerm {
-  double friction;  ///< c_D eta: (5/3) eta in 3D (LAMMPS), 8/5 eta in 2D, 3/2 eta in 1D
-                    ///< (SdpdBackend::make_pair_params)
-  /// Adds the pair force on i [mass length/time^2] to `force`.
-  /// @param pi_di2 P_i/d_i^2, @param pj_dj2 P_j/d_j^2, @param inv_didj 1/(d_i d_j), @param v v_ij.
-  template <int D>
-  void operator()(const PairGeometry<D>& g, double pi_di2, double pj_dj2, double inv_didj,
-                  const std::type_identity_t<std::array<double, D>>& v,
-                  std::type_identity_t<std::array<double, D>>& force) const {
-    const double fp = (pi_di2 + pj_dj2) * g.f;
-    const double fv = friction * g.f * inv_didj;
-    double xv = 0;
-    for (int a = 0; a < D; ++a) xv += g.x[a] * v[a];
-    const double c = xv * g.inv_r2;
-    for (int a = 0; a < D; ++a) force[a] += fp * g.x[a] - fv * (v[a] + g.x[a] * c);
-  }
-};
-
-/// Continuity with Molteni & Colagrossi (2009) density diffusion (drawert2019 eqs 15, 18):
-/// \f$ \dot\rho_i = \sum_j m_j F_{ij} (v_{ij}\cdot x_{ij})\cdot(-1)
-///     + 2\delta h c_0 \sum_j V_j (\rho_j - \rho_i) F_{ij} \frac{r^2}{r^2 + \epsilon_h h^2} \f$
-/// (the second sum is the Brookshaw Laplacian of rho with diffusivity delta h c0;
-/// eps_h = 0.01 as in the paper).
-struct ContinuityTerm {
-  double delta_h_c0;  ///< delta h c0 [length^2/time]
-  double eps_h2;      ///< eps_h h^2 [length^2]
-  template <int D>
-  [[nodiscard]] double operator()(const PairGeometry<D>& g,
-                                  const std::type_identity_t<std::array<double, D>>& v, double m_j,
-                                  double rho_i, double rho_j) const {
-    double xv = 0;
-    for (int a = 0; a < D; ++a) xv += g.x[a] * v[a];
-    return with_volume(g, v, m_j, m_j / rho_j, rho_i, rho_j);
-  }
-  /// The same with V_j = m_j/rho_j precomputed.
-  template <int D>
-  [[nodiscard]] double with_volume(const PairGeometry<D>& g,
-                                   const std::type_identity_t<std::array<double, D>>& v, double m_j,
-                                   double volume_j, double rho_i, double rho_j) const {
-    double xv = 0;
-    for (int a = 0; a < D; ++a) xv += g.x[a] * v[a];
-    return -m_j * g.f * xv +
-           2.0 * delta_h_c0 * volume_j * (rho_j - rho_i) * g.f * g.r2 / (g.r2 + eps_h2);
-  }
 };
 
 /// Brookshaw / Cleary-Monaghan Laplacian coefficient of docs/method.md (17):

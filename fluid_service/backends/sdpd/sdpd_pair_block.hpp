@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 /// \file sdpd_pair_block.hpp
-/// SIMD form of the SDPD pair terms (pair_terms.hpp) for one particle i and the neighbours
+/// SIMD form of the SDPD pair terms (sdpd_pair_physics.hpp) for one particle i and the neighbours
 /// within the support, stored as a compact struct-of-arrays block. The backend gathers the
 /// block (scalar: minimum image, cut-off test, per-neighbour loads), this kernel evaluates
 /// every pair term lane-wise, and the backend sums the per-pair results in neighbour order

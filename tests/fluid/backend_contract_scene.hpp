@@ -1,17 +1,9 @@
 // SPDX-License-Identifier: MIT
-/// \file backend_generic_scene.hpp
-/// Scene and case description shared by the backend-generic tests (backend_generic_test.hpp,
-/// which holds the TEST_P bodies and must be included by exactly one source per executable).
-/// Original header comment of the test bodies follows.
-/// Backend-generic property tests, written once and instantiated per backend:
-///   INSTANTIATE_TEST_SUITE_P(Name, BackendGenericTest, ::testing::Values(BackendCase{...}));
-/// Each case supplies a factory and the scene knobs the backend needs; the scene is a 3D
-/// periodic box of jittered lattice particles (N >= kMinParallel so threads really run),
-/// k_B T > 0 (noise on), one deterministic species with a step profile.
-/// Asserted: (1) total momentum is conserved to rounding with noise on (pairwise-antisymmetric
-/// noise), for backends that move particles; (2) same seed -> bit-identical state, different
-/// seed -> different state (when the backend has thermal noise); (3) save/restore continues
-/// bit-identically; (4) 1 thread and 2 threads give bit-identical states (OpenMP builds).
+/// \file backend_contract_scene.hpp
+/// The scene of the backend contract (backend_contract_test.cpp, run on every registered
+/// backend): a 3D periodic box of jittered lattice particles (N >= kMinParallel so threads
+/// really run), k_B T > 0 where the backend has thermal noise, one deterministic species with a
+/// step profile. BackendCase holds the scene's knobs; the tDPD property tests reuse it.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -19,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -46,6 +39,10 @@ struct BackendCase {
 };
 inline std::string case_name(const ::testing::TestParamInfo<BackendCase>& info) {
   return info.param.name;
+}
+/// How GoogleTest prints a case (its name, not its bytes).
+inline void PrintTo(const BackendCase& c, std::ostream* os) {
+  *os << c.name;
 }
 
 struct Scene {

@@ -1,21 +1,18 @@
 // SPDX-License-Identifier: MIT
-/// \file backend_generic_test.hpp
-/// Backend-generic property tests, written once and instantiated per backend:
-///   INSTANTIATE_TEST_SUITE_P(Name, BackendGenericTest, ::testing::Values(BackendCase{...}));
-/// Each case supplies a factory and the scene knobs the backend needs; the scene is a 3D
-/// periodic box of jittered lattice particles (N >= kMinParallel so threads really run),
-/// k_B T > 0 (noise on), one deterministic species with a step profile.
+/// \file backend_contract_test.cpp
+/// The backend contract: property tests written once and run on every backend the registry
+/// holds (register_builtin_backends, generated from SADR_FLUID_BACKENDS), so a new backend runs
+/// them without anyone adding it. What a backend does is read from its schema entry
+/// (capabilities); the scene is backend_contract_scene.hpp.
 /// Asserted: (1) total momentum is conserved to rounding with noise on (pairwise-antisymmetric
-/// noise), for backends that move particles; (2) same seed -> bit-identical state, different
-/// seed -> different state (when the backend has thermal noise); (3) save/restore continues
-/// bit-identically; (4) 1 thread and 2 threads give bit-identical states (OpenMP builds);
+/// noise), for backends that move particles and have thermal noise; (2) same seed -> bit-identical
+/// state, different seed -> different state (when the backend has thermal noise); (3) save/restore
+/// continues bit-identically; (4) 1 thread and 2 threads give bit-identical states (OpenMP builds);
 /// (5) current_substep_bound() at t = 0 (the figure the fluid service reports to the plan)
 /// predicts the first advance's sub-steps and leaves the trajectory as it is.
-#pragma once
-
 #include <gtest/gtest.h>
 
-#include "backend_generic_scene.hpp"
+#include "backend_contract_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,14 +22,16 @@
 #include <vector>
 
 #include "sadr/common/rng.hpp"
+#include "sadr/fluid/builtin_backends.hpp"
 #include "sadr/fluid/fluid_backend.hpp"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 namespace sadr::fluid::generic_test {
+namespace {
 
-inline std::unique_ptr<FluidBackend> run(const BackendCase& bc, std::uint64_t seed, int steps) {
+std::unique_ptr<FluidBackend> run(const BackendCase& bc, std::uint64_t seed, int steps) {
   auto b = bc.make();
   const Scene s = make_scene(bc, seed);
   b->initialize(s.model, s.state, s.conc);
@@ -40,7 +39,7 @@ inline std::unique_ptr<FluidBackend> run(const BackendCase& bc, std::uint64_t se
   return b;
 }
 
-inline void expect_identical(const FluidBackend& a, const FluidBackend& b) {
+void expect_identical(const FluidBackend& a, const FluidBackend& b) {
   ParticleState sa, sb;
   a.read_state(sa);
   b.read_state(sb);
@@ -57,9 +56,9 @@ inline void expect_identical(const FluidBackend& a, const FluidBackend& b) {
   EXPECT_EQ(a.time(), b.time());
 }
 
-class BackendGenericTest : public ::testing::TestWithParam<BackendCase> {};
+class BackendContract : public ::testing::TestWithParam<BackendCase> {};
 
-TEST_P(BackendGenericTest, SubstepBoundPredictsTheFirstAdvance) {
+TEST_P(BackendContract, SubstepBoundPredictsTheFirstAdvance) {
   const auto& bc = GetParam();
   const Scene s = make_scene(bc, 7);
   auto asked = bc.make();
@@ -78,10 +77,13 @@ TEST_P(BackendGenericTest, SubstepBoundPredictsTheFirstAdvance) {
   expect_identical(*asked, *plain);
 }
 
-TEST_P(BackendGenericTest, MomentumConservedWithNoise) {
+TEST_P(BackendContract, MomentumConservedWithNoise) {
   const auto& bc = GetParam();
   auto b = run(bc, 7, bc.steps);
-  if (!b->capabilities().moves_particles) GTEST_SKIP() << bc.name << " does not move particles";
+  const auto& caps = b->capabilities();
+  if (!caps.moves_particles || !caps.thermal_noise) {
+    GTEST_SKIP() << bc.name << " has no thermal noise that moves particles";
+  }
   ParticleState s;
   b->read_state(s);
   double p[3] = {0, 0, 0}, scale = 0;
@@ -95,7 +97,7 @@ TEST_P(BackendGenericTest, MomentumConservedWithNoise) {
   for (int a = 0; a < 3; ++a) EXPECT_LT(std::abs(p[a]), 1e-12 * scale) << "axis " << a;
 }
 
-TEST_P(BackendGenericTest, SameSeedSameResultOtherSeedDiffers) {
+TEST_P(BackendContract, SameSeedSameResultOtherSeedDiffers) {
   const auto& bc = GetParam();
   auto a = run(bc, 11, bc.steps);
   auto b = run(bc, 11, bc.steps);
@@ -108,7 +110,7 @@ TEST_P(BackendGenericTest, SameSeedSameResultOtherSeedDiffers) {
   EXPECT_NE(sa.positions, sc.positions) << "the seed must change the noise";
 }
 
-TEST_P(BackendGenericTest, SaveRestoreContinuesIdentically) {
+TEST_P(BackendContract, SaveRestoreContinuesIdentically) {
   const auto& bc = GetParam();
   auto a = run(bc, 5, bc.steps);
   const std::string blob = a->save();
@@ -124,7 +126,7 @@ TEST_P(BackendGenericTest, SaveRestoreContinuesIdentically) {
   EXPECT_EQ(a->save(), b->save());
 }
 
-TEST_P(BackendGenericTest, ThreadCountIndependent) {
+TEST_P(BackendContract, ThreadCountIndependent) {
 #ifdef _OPENMP
   const auto& bc = GetParam();
   const int saved = omp_get_max_threads();
@@ -139,4 +141,28 @@ TEST_P(BackendGenericTest, ThreadCountIndependent) {
 #endif
 }
 
+/// Every registered backend, with the scene's knobs from its schema entry: thermal noise on
+/// (k_B T = 1e-3, small against the sound speed's kinetic scale) where the backend has it.
+std::vector<BackendCase> registered_backends() {
+  BackendRegistry reg;
+  register_builtin_backends(reg);
+  std::vector<BackendCase> cases;
+  for (const std::string& name : reg.names()) {
+    BackendCase c;
+    c.name = name;
+    c.make = [name] {
+      BackendRegistry r;
+      register_builtin_backends(r);
+      return r.create(name);
+    };
+    c.temperature = reg.create(name)->capabilities().thermal_noise ? 1e-3 : 0.0;
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Registered, BackendContract, ::testing::ValuesIn(registered_backends()),
+                         case_name);
+
+}  // namespace
 }  // namespace sadr::fluid::generic_test

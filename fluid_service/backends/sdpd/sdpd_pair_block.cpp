@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
-#include "sadr/fluid/sdpd_pair_block.hpp"
+#include "sdpd_pair_block.hpp"
 
 #include <cmath>
+
+#include "sdpd_pair_physics.hpp"
 
 namespace sadr::fluid {
 
@@ -71,16 +73,16 @@ SADR_PAIR_CLONES void block_impl(const SdpdPairParams& p, const SdpdPairI& pi, s
     const double f = kLucy ? fc * s * s : fc * s * s * s;
     ro[k] = r;
     fo[k] = f;
-    const double fp = (pd2_i + pd2j[k]) * f;
-    const double fv = friction * f * (ind_i * indj[k]);
+    const double fp = sdpd::pressure_factor(pd2_i, pd2j[k], f);
+    const double fv = sdpd::viscous_factor(friction, f, ind_i * indj[k]);
     double xv = x0[k] * v0[k];
     if constexpr (D > 1) xv += x1[k] * v1[k];
     if constexpr (D > 2) xv += x2[k] * v2[k];
     const double c = xv * inv_r2;
-    f0[k] = fp * x0[k] - fv * (v0[k] + x0[k] * c);
-    if constexpr (D > 1) f1[k] = fp * x1[k] - fv * (v1[k] + x1[k] * c);
-    if constexpr (D > 2) f2[k] = fp * x2[k] - fv * (v2[k] + x2[k] * c);
-    dro[k] = -mj[k] * f * xv + two_dhc0 * volj[k] * (rhoj[k] - rho_i) * f * r2 / (r2 + eps);
+    f0[k] = sdpd::force_component(fp, fv, x0[k], v0[k], c);
+    if constexpr (D > 1) f1[k] = sdpd::force_component(fp, fv, x1[k], v1[k], c);
+    if constexpr (D > 2) f2[k] = sdpd::force_component(fp, fv, x2[k], v2[k], c);
+    dro[k] = sdpd::density_rate(mj[k], f, xv, two_dhc0, volj[k], rho_i, rhoj[k], r2, eps);
   }
   if (p.noise) {
     const double* __restrict sqj = b.sqrt_inv_nd_j.data();
@@ -97,8 +99,7 @@ SADR_PAIR_CLONES void block_impl(const SdpdPairParams& p, const SdpdPairI& pi, s
       const double r = ro[k];
       const double s = 1.0 - r * inv_h;
       const double sf = kLucy ? sfc * s : sfc * s * std::sqrt(s);
-      // sqrt(amp2/2) = sqrt(2 k_B T c_D eta) sqrt(F_ij) sqrt(1/d_i) sqrt(1/d_j)
-      const double a = (na * sf) * (sq_i * sqj[k]);
+      const double a = sdpd::noise_amplitude(na, sf, sq_i, sqj[k]);
       amp[k] = i < jj[k] ? a : -a;
       amp_r[k] = a / r;
     }

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+/// \file sdpd_pair_physics.hpp
+/// The SDPD pair physics, written once: each function is one equation of docs/method.md
+/// section 2, on scalars, so that every path of the backend evaluates the same arithmetic in
+/// the same order: the evaluators below (SdpdMomentumTerm, ContinuityTerm; the full-list
+/// gather with walls and species, sdpd_gather.cpp), the SIMD block (sdpd_pair_block.cpp) and
+/// the j side of the half path (sdpd_half_path.cpp). The files that vectorise them are compiled
+/// without FMA contraction, so a pair gives the same bits in a SIMD lane and in a scalar loop.
+///
+/// Notation: x_ij = x_i - x_j, r = |x_ij|, v_ij = v_i - v_j, F_ij = -(1/r) dW/dr >= 0,
+/// number density d_i = rho_i / m_i, P_i the pressure.
+#pragma once
+
+#include <array>
+#include <type_traits>
+
+#include "sadr/fluid/pair_terms.hpp"
+
+namespace sadr::fluid::sdpd {
+
+/// Pressure factor of the momentum equation, (P_i/d_i^2 + P_j/d_j^2) F_ij.
+inline double pressure_factor(double pd2_i, double pd2_j, double f) {
+  return (pd2_i + pd2_j) * f;
+}
+
+/// Viscous factor of the momentum equation, c_D eta F_ij / (d_i d_j).
+/// @param inv_didj 1/(d_i d_j), formed by the caller as (1/d_i)(1/d_j).
+inline double viscous_factor(double friction, double f, double inv_didj) {
+  return friction * f * inv_didj;
+}
+
+/// Component a of the pair force on i (Espanol & Revenga 2003, docs/method.md (16)):
+/// \f$ f_p x_a - f_v [v_a + x_a (x\cdot v)/r^2] \f$ with c = (x.v)/r^2.
+inline double force_component(double fp, double fv, double x, double v, double c) {
+  return fp * x - fv * (v + x * c);
+}
+
+/// The pair's term of drho_i/dt: continuity and the Molteni & Colagrossi (2009) density
+/// diffusion (drawert2019 eqs 15, 18):
+/// \f$ -m_j F_{ij} (x_{ij}\cdot v_{ij}) + 2\delta h c_0 V_j (\rho_j - \rho_i) F_{ij}
+///     \frac{r^2}{r^2 + \epsilon_h h^2} \f$ (eps_h = 0.01).
+/// @param two_dhc0 2 delta h c0 [length^2/time], @param eps_h2 eps_h h^2 [length^2].
+inline double density_rate(double m_j, double f, double xv, double two_dhc0, double vol_j,
+                           double rho_i, double rho_j, double r2, double eps_h2) {
+  return -m_j * f * xv + two_dhc0 * vol_j * (rho_j - rho_i) * f * r2 / (r2 + eps_h2);
+}
+
+/// Thermal-noise amplitude of the pair, sqrt(amp2/2) = sqrt(2 k_B T c_D eta) sqrt(F_ij)
+/// sqrt(1/d_i) sqrt(1/d_j), the last product formed symmetrically so both sides of the pair
+/// get the same value (PairNoise, pair_terms.hpp).
+inline double noise_amplitude(double noise_amp, double sqrt_f, double sqrt_inv_nd_i,
+                              double sqrt_inv_nd_j) {
+  return (noise_amp * sqrt_f) * (sqrt_inv_nd_i * sqrt_inv_nd_j);
+}
+
+}  // namespace sadr::fluid::sdpd
+
+namespace sadr::fluid {
+
+/// The momentum equation as an evaluator over PairGeometry (the gather loop):
+/// \f$ m_i \dot v_i = \sum_j (P_i/d_i^2 + P_j/d_j^2) F_{ij} x_{ij}
+///      - \frac{5\eta}{3} \sum_j \frac{F_{ij}}{d_i d_j}\,[v_{ij} + e_{ij}(e_{ij}\cdot v_{ij})] \f$
+/// in the LAMMPS `sdpd/taitwater/isothermal` form.
+struct SdpdMomentumTerm {
+  double friction;  ///< c_D eta: (5/3) eta in 3D (LAMMPS), 8/5 eta in 2D, 3/2 eta in 1D
+                    ///< (SdpdBackend::make_pair_params)
+  /// Adds the pair force on i [mass length/time^2] to `force`.
+  /// @param pi_di2 P_i/d_i^2, @param pj_dj2 P_j/d_j^2, @param inv_didj 1/(d_i d_j), @param v v_ij.
+  template <int D>
+  void operator()(const PairGeometry<D>& g, double pi_di2, double pj_dj2, double inv_didj,
+                  const std::type_identity_t<std::array<double, D>>& v,
+                  std::type_identity_t<std::array<double, D>>& force) const {
+    const double fp = sdpd::pressure_factor(pi_di2, pj_dj2, g.f);
+    const double fv = sdpd::viscous_factor(friction, g.f, inv_didj);
+    double xv = 0;
+    for (int a = 0; a < D; ++a) xv += g.x[a] * v[a];
+    const double c = xv * g.inv_r2;
+    for (int a = 0; a < D; ++a) force[a] += sdpd::force_component(fp, fv, g.x[a], v[a], c);
+  }
+};
+
+/// The continuity equation with density diffusion (sdpd::density_rate) over PairGeometry.
+struct ContinuityTerm {
+  double delta_h_c0;  ///< delta h c0 [length^2/time]
+  double eps_h2;      ///< eps_h h^2 [length^2]
+  /// The pair's term of drho_i/dt with V_j = m_j/rho_j precomputed.
+  template <int D>
+  [[nodiscard]] double with_volume(const PairGeometry<D>& g,
+                                   const std::type_identity_t<std::array<double, D>>& v, double m_j,
+                                   double volume_j, double rho_i, double rho_j) const {
+    double xv = 0;
+    for (int a = 0; a < D; ++a) xv += g.x[a] * v[a];
+    return sdpd::density_rate(m_j, g.f, xv, 2.0 * delta_h_c0, volume_j, rho_i, rho_j, g.r2, eps_h2);
+  }
+};
+
+}  // namespace sadr::fluid
