@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <thread>
 
 #include "sadr/common/v1/snapshot.pb.h"
@@ -44,7 +46,10 @@ class RpcFixture : public ::testing::TestWithParam<std::string> {
     o.poll_interval = std::chrono::milliseconds(20);
     server_ = std::make_unique<RpcServer>(o);
     endpoint_ = server_->endpoint();
-    thread_ = std::thread([this] { server_->serve(handler_, &stop_); });
+    thread_ = std::thread([this] {
+      server_->serve(handler_, &stop_);
+      served_ = true;
+    });
   }
   void TearDown() override {
     stop_ = true;
@@ -54,6 +59,7 @@ class RpcFixture : public ::testing::TestWithParam<std::string> {
   std::unique_ptr<RpcServer> server_;
   std::string endpoint_;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> served_{false};  ///< serve() has returned
   std::thread thread_;
 };
 
@@ -156,8 +162,18 @@ TEST_P(RpcFixture, HandlerCanShutDownTheServer) {
   c.handshake(common::v1::SERVICE_KIND_SSA, kProtocolVersion);
   common::v1::Snapshot req, out;
   req.set_format("stop");
+  req.set_blob("abc");
   c.call(req, out);
-  thread_.join();  // serve() returned by itself
+  EXPECT_EQ(out.blob(), "cba") << "the request that shuts the server down is answered";
+  // serve() returns by itself (stop_ is never set here): waited for with a deadline, so a
+  // server that keeps serving fails the test instead of hanging it.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!served_ && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(served_) << "serve() did not return after the handler asked to shut down";
+  EXPECT_FALSE(stop_);
+  thread_.join();
   thread_ = std::thread([] {});
 }
 
