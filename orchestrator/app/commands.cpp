@@ -60,7 +60,8 @@ bool is_service_failure(const Error& e) {
 }  // namespace
 
 void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
-  const GraphReport graph = graph_report(scene, plan);  // SSA graph diagnostics (#18)
+  for (const auto& w : scene.warnings) log::warn(w);
+  const GraphReport graph = graph_report(scene, plan);  // SSA graph diagnostics
   if (!graph.warning.empty()) log::warn(scene.name, ": ", graph.warning);
   if (o.quiet) return;
   std::fprintf(stderr, "sadr: scene '%s' (%zu particles, %zu species, %zu reactions), t_end = %g\n",
@@ -138,6 +139,7 @@ void check_work(const Scene& scene, const Plan& plan, const CliOptions& o, const
   }
   enforce_limits(e, o.allow_large);
   for (const auto& line : e.soft) log::warn(line, " (allowed by --allow-large)");
+  for (const auto& note : e.notes) log::warn(note);
 }
 
 /// OpenMP threads the fluid will use: --fluid-threads, else OMP_NUM_THREADS (its
@@ -289,6 +291,12 @@ int exit_code_of(const std::exception& e) {
 int cmd_validate(const CliOptions& o) {
   try {
     const Scene scene = load_scene(o.scene, parse_overrides(o.overrides));
+    if (o.strict && !scene.warnings.empty()) {
+      for (const auto& w : scene.warnings) log::warn(w);
+      std::fprintf(stderr, "%s: refused by --strict: %zu warning(s)\n", o.scene.c_str(),
+                   scene.warnings.size());
+      return kExitInvalidInput;
+    }
     Plan plan = make_plan(scene);
     const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
     decide_overlap(plan, o.overlap, hw, fluid_threads(o, hw), 1);
@@ -297,6 +305,7 @@ int cmd_validate(const CliOptions& o) {
         scene.output.directory.empty() ? fs::path(".") : fs::path(scene.output.directory);
     const WorkEstimate e = estimate_with_backend(scene, plan, out, 1, 1);
     for (const auto& line : e.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
+    for (const auto& note : e.notes) log::warn(note);
     enforce_limits(e, true);
     for (const auto& line : e.soft) {
       std::fprintf(stderr, "%s: warning: %s; sadr run refuses it without --allow-large\n",
@@ -339,11 +348,10 @@ int cmd_run(const CliOptions& o) {
 
   if (!o.realization.empty()) {
     // One realization of an ensemble (a cluster array task): DIR/realization_NNNN.
-    char name[32];
-    std::snprintf(name, sizeof name, "realization_%04llu", task);
+    const std::string name = realization_dir_name(task);
     RunOptions base;
     base.progress = !o.quiet && !o.no_progress;
-    base.progress_label = std::string(name) + " ";
+    base.progress_label = name + " ";
     const RunResult res = run_realization(scene, plan, o, task, out / name, nullptr, base);
     if (!res.interrupted) summarize_at_end(out / name, o.quiet);
     return res.interrupted && g_interrupt ? kExitInterrupted : kExitOk;
@@ -389,8 +397,7 @@ int cmd_run(const CliOptions& o) {
       base.on_frame = [&frames](std::size_t k, double t, std::span<const SpeciesColumn> cols) {
         frames[k] = {t, std::vector<SpeciesColumn>(cols.begin(), cols.end())};
       };
-      char name[32];
-      std::snprintf(name, sizeof name, "realization_%04d", r);
+      const std::string name = realization_dir_name(static_cast<std::uint64_t>(r));
       RunResult res;
       // Each attempt starts at t = 0 (the ensemble needs every frame): drop the frames of a
       // failed one.

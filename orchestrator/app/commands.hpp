@@ -53,6 +53,8 @@ struct CliOptions {
   bool quiet = false;        ///< no progress display, plan or info lines
   bool no_progress = false;  ///< --no-progress: no progress display (the plan stays)
   bool allow_large = false;  ///< --allow-large: lift the soft limits of the work estimate
+  bool strict = false;       ///< validate --strict: a scene warning is an error
+  bool dry_run = false;      ///< sweep --dry-run: check and list the runs, start nothing
   /// --overlap / --no-overlap: SSA step k at the same time as fluid step k + 1.
   OverlapRequest overlap = OverlapRequest::kAuto;
   int fluid_threads = 0;  ///< --fluid-threads (0 = OpenMP's default); SADR_FLUID_THREADS

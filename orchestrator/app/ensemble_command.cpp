@@ -13,6 +13,7 @@
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/ensemble_accumulator.hpp"
 #include "sadr/orchestrator/hash.hpp"
+#include "sadr/orchestrator/run_manifest.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
 #include "sadr/orchestrator/sweep_frames.hpp"
 
@@ -96,9 +97,7 @@ int resume_ensemble(const CliOptions& o, const fs::path& dir) {
   std::vector<FailedRealization> failed;
   int executed = 0;
   for (int r = 0; r < count && !interrupt_requested(); ++r) {
-    char name[32];
-    std::snprintf(name, sizeof name, "realization_%04d", r);
-    const fs::path rd = dir / name;
+    const fs::path rd = dir / realization_dir_name(static_cast<std::uint64_t>(r));
     if (fs::exists(rd / "run.json") &&
         nlohmann::json::parse(read_file_bytes(rd / "run.json")).value("status", "") == "ok") {
       continue;
@@ -131,7 +130,7 @@ int cmd_ensemble(const CliOptions& o) {
   const fs::path dir = o.directory;
   std::vector<fs::path> realizations;
   for (const auto& e : fs::directory_iterator(dir)) {
-    if (e.is_directory() && e.path().filename().string().rfind("realization_", 0) == 0) {
+    if (e.is_directory() && is_realization_dir_name(e.path().filename().string())) {
       realizations.push_back(e.path());
     }
   }

@@ -129,6 +129,10 @@ int main(int argc, char** argv) {
                     "species[0].diffusivity=0.1 (docs/cli.md)");
   };
   add_set_option(validate);
+  validate->add_flag("--strict", o.strict,
+                     "refuse the scene (exit 1) when it has warnings: a reaction, initial value, "
+                     "boundary or observable that selects no particle, molecules that never "
+                     "reach the fluid");
 
   auto* run = app.add_subcommand("run", "run a scene (one realization, or an ensemble)");
   run->add_option("scene", o.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
@@ -191,6 +195,9 @@ int main(int argc, char** argv) {
                     "sweeps/<file stem>)");
   sweep->add_flag("--force", o.force, "start over in a directory that holds another sweep");
   sweep->add_flag("-q,--quiet", o.quiet, "no per-run lines");
+  sweep->add_flag("--dry-run", o.dry_run,
+                  "check every point's scene and list the runs and their folders; write and "
+                  "start nothing");
   auto* sweep_task =
       app.add_subcommand("sweep-task", "one run of a sweep (the worker command of every executor)");
   sweep_task->add_option("directory", o.directory, "the sweep directory")

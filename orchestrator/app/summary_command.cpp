@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "csv_cells.hpp"
 #include "sadr/common/log.hpp"
+#include "sadr/orchestrator/run_manifest.hpp"
 
 namespace sadr::orchestrator {
 namespace fs = std::filesystem;
@@ -174,7 +175,7 @@ void print_summary(const fs::path& dir, std::FILE* out) {
   if (!is_run && fs::is_directory(dir)) {
     for (const auto& e : fs::directory_iterator(dir)) {
       if (e.is_directory() && fs::exists(e.path() / "run.json") &&
-          e.path().filename().string().rfind("realization_", 0) == 0) {
+          is_realization_dir_name(e.path().filename().string())) {
         realizations.push_back(e.path());
       }
     }

@@ -26,7 +26,8 @@ std::string Diagnostics::override_of(std::string_view field) const {
   return found;
 }
 
-void Diagnostics::error(SourceLocation where, std::string_view field, std::string_view message) {
+std::string Diagnostics::format(SourceLocation& where, std::string_view field,
+                                std::string_view message) const {
   const std::string set_by = field.empty() ? std::string() : override_of(field);
   if (!set_by.empty()) where = {};  // the value is not in the file
   std::string line = file_;
@@ -43,24 +44,48 @@ void Diagnostics::error(SourceLocation where, std::string_view field, std::strin
   }
   line.append(message);
   if (!set_by.empty()) line += " (set by --set " + set_by + ")";
-  messages_.push_back(std::move(line));
+  return line;
+}
+
+void Diagnostics::error(SourceLocation where, std::string_view field, std::string_view message) {
+  messages_.push_back(format(where, field, message));
   where_.push_back(where);
+}
+
+void Diagnostics::warning(SourceLocation where, std::string_view field, std::string_view message) {
+  warnings_.push_back(format(where, field, message));
+  warning_where_.push_back(where);
+}
+
+namespace {
+
+/// The indices of `where` in file order (positions first, then the ones without).
+std::vector<std::size_t> file_order(const std::vector<SourceLocation>& where) {
+  std::vector<std::size_t> order(where.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto key = [&](std::size_t i) {
+    const SourceLocation w = where[i];
+    return std::pair<long, long>(w.line > 0 ? w.line : std::numeric_limits<long>::max(), w.column);
+  };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+  return order;
+}
+
+}  // namespace
+
+std::vector<std::string> Diagnostics::warnings() const {
+  std::vector<std::string> out;
+  for (const std::size_t i : file_order(warning_where_)) out.push_back(warnings_[i]);
+  return out;
 }
 
 void Diagnostics::throw_if_any() const {
   if (messages_.empty()) return;
   std::string text = "invalid scene '" + file_ + "': " + std::to_string(messages_.size()) +
                      (messages_.size() == 1 ? " problem" : " problems");
-  std::vector<std::size_t> order(messages_.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  auto key = [&](std::size_t i) {
-    const SourceLocation w = where_[i];
-    return std::pair<long, long>(w.line > 0 ? w.line : std::numeric_limits<long>::max(), w.column);
-  };
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
   std::vector<std::pair<std::string, std::string>> details;
-  for (const std::size_t i : order) {
+  for (const std::size_t i : file_order(where_)) {
     text += "\n  " + messages_[i];
     details.emplace_back("problem", messages_[i]);
   }
@@ -84,7 +109,9 @@ std::size_t levenshtein(std::string_view a, std::string_view b) {
 
 namespace {
 // Names people reach for from the papers or other codes, mapped to our keys.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 12> kSynonyms{{
+// The enumerated values too (region shapes, ...): a synonym applies only where its target is
+// one of the allowed names.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 22> kSynonyms{{
     {"kappa", "diffusivity"},
     {"D", "diffusivity"},
     {"h", "smoothing_length"},
@@ -97,6 +124,16 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 12> kSynonym
     {"kT", "temperature"},
     {"rho0", "reference_density"},
     {"c0", "sound_speed"},
+    {"circle", "disk"},
+    {"disc", "disk"},
+    {"ball", "sphere"},
+    {"rectangle", "box"},
+    {"square", "box"},
+    {"cube", "box"},
+    {"cuboid", "box"},
+    {"ring", "annulus"},
+    {"slab", "channel"},
+    {"stripe", "channel"},
 }};
 }  // namespace
 

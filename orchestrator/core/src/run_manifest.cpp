@@ -13,6 +13,21 @@
 
 namespace sadr::orchestrator {
 
+std::string realization_dir_name(std::uint64_t r) {
+  std::string digits = std::to_string(r);
+  if (digits.size() < 4) digits.insert(0, 4 - digits.size(), '0');
+  return "realization_" + digits;
+}
+
+bool is_realization_dir_name(std::string_view name) {
+  constexpr std::string_view prefix = "realization_";
+  if (name.size() < prefix.size() + 4 || name.substr(0, prefix.size()) != prefix) return false;
+  for (const char c : name.substr(prefix.size())) {
+    if (c < '0' || c > '9') return false;
+  }
+  return true;
+}
+
 RunManifest::RunManifest() : sadr_version(kBuildVersion), protocol_version(kProtocolVersion) {
   for (const char* name : {"OMP_NUM_THREADS", "OMP_WAIT_POLICY", "GOMP_SPINCOUNT"}) {
     const char* value = std::getenv(name);

@@ -177,6 +177,7 @@ void read_initial(SceneContext& ctx, const Field& sp_field, Species& sp) {
       }
       if (!check_amount(r, value_field, sp, i, sp.initial[i])) break;
     }
+    if (conc) warn_rounds_to_zero(ctx, value_field, sp, *rg, *conc);
   }
 }
 
@@ -423,6 +424,7 @@ void read_species(SceneContext& ctx, const Field& root) {
           r.number(f, "diffusivity", Bound::kNonNegative, "length^2/time", true).value_or(0.0);
       read_initial(ctx, f, sp);
       read_boundaries(ctx, f, sp);
+      warn_inert_wall_molecules(ctx, f, sp);
       ctx.scene.species.push_back(std::move(sp));
     }
   }
@@ -526,6 +528,11 @@ void read_reactions(SceneContext& ctx, const Field& root) {
                        "the deterministic reaction '" + rx.name + "' with kinds beyond fluid");
     }
     if (stochastic && has_law) read_law(ctx, f, rx);
+    warn_reaction_selects_nothing(ctx, f, rx);
+    if (!has_law && rx.rate == 0.0 && YamlReader::present(YamlReader::child(f, "rate"))) {
+      r.warning(YamlReader::child(f, "rate"),
+                "rate 0: reaction '" + rx.name + "' never fires (remove it, or give its rate)");
+    }
     Reaction back = rx;
     back.name = rx.name + "_reverse";
     std::swap(back.reactants, back.products);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 
+#include "sadr/common/input_file.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/fluid/backend_schema.hpp"
 #include "sadr/orchestrator/hash.hpp"
@@ -245,16 +246,21 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   read_ssa(ctx, root);
   check_neighbours(ctx, root);
   scene.seed = reader.integer(root, "seed", 0, UINT64_MAX, false).value_or(0);
+  if (diag.empty()) {  // silent zeros: only in a scene whose every part was read
+    warn_species_never_present(ctx, root);
+    warn_empty_observables(ctx, root);
+  }
   if (!ctx.particle_file_bytes.empty()) {
     // A changed particle file is a changed scene (checkpoints refuse it).
     scene.source_hash = content_hash(effective + ctx.particle_file_bytes);
   }
   diag.throw_if_any();
+  scene.warnings = diag.warnings();
   return scene;
 }
 
 Scene load_scene(const std::filesystem::path& path, std::span<const SceneOverride> overrides) {
-  const std::string bytes = read_file_bytes(path);
+  const std::string bytes = read_file_bytes(path, kMaxSceneFileBytes, "scene file");
   return parse_scene(bytes, path, overrides);
 }
 

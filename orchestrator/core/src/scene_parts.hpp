@@ -80,6 +80,20 @@ void read_assigned(SceneContext& ctx, const Field& entry);
 void check_assigned(SceneContext& ctx, const Field& root);
 void read_time_and_output(SceneContext& ctx, const Field& root);
 
+// Silent zeros (scene_warnings.cpp): warnings with the key and line.
+/// A reaction whose regions and kinds select no particle.
+void warn_reaction_selects_nothing(SceneContext& ctx, const Field& f, const Reaction& rx);
+/// Molecules that start on wall particles without a boundary condition for their species.
+void warn_inert_wall_molecules(SceneContext& ctx, const Field& f, const Species& sp);
+/// A stochastic initial concentration that rounds to 0 molecules in every particle.
+void warn_rounds_to_zero(SceneContext& ctx, const Field& value_field, const Species& sp,
+                         const Region& rg, double concentration);
+/// Species that stay zero (nothing starts, holds or produces them), and dirichlet reservoirs
+/// that cannot diffuse (after the reactions and boundary fluxes are read).
+void warn_species_never_present(SceneContext& ctx, const Field& root);
+/// Observables over regions that stay empty (a backend that does not move particles).
+void warn_empty_observables(SceneContext& ctx, const Field& root);
+
 /// Parses "fluid", "wall", "inlet", "outlet" (nullopt otherwise).
 std::optional<ParticleKind> parse_kind(std::string_view name);
 /// Why `name` cannot be a scene name (it names output files), or nullopt.

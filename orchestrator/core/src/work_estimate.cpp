@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <limits>
@@ -23,6 +24,21 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The backend's schema memory figures (sdpd's defaults for an unknown name: the loader has
 /// refused it already).
+/// "42 s", "3.5 min", "2.1 h", "4.2 days".
+std::string duration_text(double seconds) {
+  char buf[48];
+  if (seconds < 90) {
+    std::snprintf(buf, sizeof buf, "%.2g s", seconds);
+  } else if (seconds < 5400) {
+    std::snprintf(buf, sizeof buf, "%.2g min", seconds / 60);
+  } else if (seconds < 172800) {
+    std::snprintf(buf, sizeof buf, "%.2g h", seconds / 3600);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.2g days", seconds / 86400);
+  }
+  return buf;
+}
+
 sadr::fluid::schema::MemoryPerParticle backend_memory(const std::string& backend) {
   const auto* b = sadr::fluid::schema::find(backend);
   return b ? b->memory : sadr::fluid::schema::MemoryPerParticle{};
@@ -170,6 +186,38 @@ std::string FluidSubsteps::criterion() const {
   return max_substep == stable_time_step ? limiting_criterion : std::string("max_time_step");
 }
 
+namespace {
+
+/// The wall-time part of the estimate (WorkEstimate::wall_seconds), from the counts above and
+/// the calibrated costs; nothing when the fluid steps but its sub-steps are not known.
+void estimate_time(const Scene& s, const Plan& plan, WorkEstimate& e, double r, double j) {
+  if (plan.fluid_stepping && e.substeps_per_step <= 0) return;
+  const auto d = static_cast<std::size_t>(std::clamp(s.box.dimension, 1, 3) - 1);
+  const auto* backend = sadr::fluid::schema::find(s.fluid.backend);
+  const double fluid_ns =
+      backend ? backend->cost.substep_ns[d] : sadr::fluid::schema::CostPerParticle{}.substep_ns[d];
+  const double runs = r / j;  // realizations run `jobs` at a time
+  const double fluid =
+      plan.fluid_stepping ? e.particles * e.fluid_substeps * fluid_ns * 1e-9 * runs : 0.0;
+  const double graph = plan.ssa_service && moves_particles(s.fluid.backend)
+                           ? e.particles * e.coupling_steps * kGraphRebuildNs[d] * 1e-9 * runs
+                           : 0.0;
+  const double ssa = e.events * kSsaEventNs * 1e-9 / j;
+  const double frames =
+      e.frames * (kFrameSeconds + e.particles * kFrameNsPerParticle * 1e-9) * runs;
+  const double steps = e.coupling_steps * kStepSeconds * runs;
+  e.time_parts = {
+      {"fluid", fluid}, {"graph", graph}, {"ssa", ssa}, {"frames", frames}, {"steps", steps}};
+  e.wall_seconds = fluid + graph + ssa + frames + steps;
+  if (e.wall_seconds > kLongRunSeconds) {
+    e.notes.push_back("this run will take about " + duration_text(e.wall_seconds) +
+                      " of wall time on a 2-core machine (estimate); `sadr run --stop-at T` "
+                      "runs part of it and `sadr summary` shows where the time goes");
+  }
+}
+
+}  // namespace
+
 WorkEstimate estimate_work(const Scene& s, const Plan& plan, const MachineLimits& machine,
                            int realizations, int jobs, const FluidSubsteps* fluid) {
   WorkEstimate e;
@@ -189,6 +237,11 @@ WorkEstimate estimate_work(const Scene& s, const Plan& plan, const MachineLimits
     e.substeps_per_step = std::isfinite(dt)
                               ? calls * std::max(1.0, std::ceil(tau / calls / dt * (1.0 - 1e-12)))
                               : calls;
+    // In all: each of the n calls takes ceil(length / dt) sub-steps, about end / dt plus half a
+    // sub-step of rounding per call (the coupling steps shortened at frames included).
+    const double n_calls = calls * e.coupling_steps;
+    e.fluid_substeps =
+        std::isfinite(dt) ? std::max(n_calls, s.time.end / dt + 0.5 * n_calls) : n_calls;
     e.substep_limit = fluid->criterion();
     e.stable_time_step = fluid->stable_time_step;
     e.limiting_criterion = fluid->limiting_criterion;
@@ -201,6 +254,8 @@ WorkEstimate estimate_work(const Scene& s, const Plan& plan, const MachineLimits
     e.event_rate = ssa_event_rate(s, e.molecules);
     e.events = e.event_rate * s.time.end * r;
   }
+
+  estimate_time(s, plan, e, r, j);
 
   const std::string where = " (estimate; docs/cli.md \"Work and memory estimate\")";
   if (e.memory_bytes() > machine.memory_bytes) {
@@ -280,6 +335,18 @@ std::vector<std::string> WorkEstimate::lines() const {
     out.push_back("estimate: " + num(molecules) + " molecules, ~" + num(event_rate) +
                   " SSA events per unit time at t = 0, ~" + num(events) + " events in all");
   }
+  if (wall_seconds > 0) {
+    std::string parts;
+    for (const auto& [name, seconds] : time_parts) {
+      if (seconds < 0.05 * wall_seconds) continue;
+      parts += (parts.empty() ? "" : ", ") + name + " " + duration_text(seconds);
+    }
+    out.push_back("estimate: about " + duration_text(wall_seconds) +
+                  " of wall time on a 2-core machine (" + parts +
+                  "; calibrated costs, docs/cli.md)");
+  } else {
+    out.push_back("estimate: wall time not estimated (the fluid's sub-steps are not known)");
+  }
   return out;
 }
 
@@ -298,6 +365,7 @@ nlohmann::json WorkEstimate::to_json() const {
           {"molecules", molecules},
           {"event_rate", event_rate},
           {"events", events},
+          {"wall_seconds", wall_seconds},
           {"hard", hard},
           {"soft", soft}};
 }

@@ -35,6 +35,9 @@ class YamlReader {
 
   Diagnostics& diag() { return diag_; }
   void error(const Field& f, std::string_view message) { diag_.error(f.where, f.path, message); }
+  void warning(const Field& f, std::string_view message) {
+    diag_.warning(f.where, f.path, message);
+  }
 
   static SourceLocation location(const YAML::Node& node);
   /// The child `key` of a map field (node undefined when absent).

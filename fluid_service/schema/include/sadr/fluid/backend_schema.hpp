@@ -63,6 +63,13 @@ struct MemoryPerParticle {
   double sadr = 490;                                   ///< [bytes] the orchestrator's share
 };
 
+/// Wall time per particle and fluid sub-step with this backend [ns], at the fluid's default
+/// threads on a 2-core machine (bench/cost_calibration.py: the median over the examples of
+/// fluid compute time / (particles x sub-steps); docs/cli.md), for the plan's time estimate.
+struct CostPerParticle {
+  std::array<double, 3> substep_ns{200, 400, 1000};  ///< in 1D, 2D, 3D
+};
+
 struct Backend {
   std::string name;
   std::string summary;  ///< one line
@@ -71,6 +78,7 @@ struct Backend {
   std::vector<std::string> required;
   std::vector<Parameter> parameters;
   MemoryPerParticle memory{};
+  CostPerParticle cost{};
   [[nodiscard]] const Parameter* parameter(std::string_view n) const;
   /// Whether `key` is in `required`.
   [[nodiscard]] bool needs(std::string_view key) const;

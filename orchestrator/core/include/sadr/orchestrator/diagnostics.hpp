@@ -34,6 +34,12 @@ class Diagnostics {
   /// position and gets " (set by --set PATH=VALUE)" appended.
   void error(SourceLocation where, std::string_view field, std::string_view message);
 
+  /// Records a warning: the scene is valid but very likely not what was meant (a term that
+  /// selects no particle, molecules that can never move). Formatted as error(); kept apart.
+  void warning(SourceLocation where, std::string_view field, std::string_view message);
+  /// The warnings recorded, sorted by position in the file.
+  [[nodiscard]] std::vector<std::string> warnings() const;
+
   /// Declares that the node at `resolved_path` (as the loader spells it,
   /// "reactions[0].rate") comes from the override `text` (scene_override.hpp).
   void add_override(std::string resolved_path, std::string text);
@@ -55,6 +61,10 @@ class Diagnostics {
   std::vector<std::string> messages_;                           ///< in the order recorded
   std::vector<SourceLocation> where_;                           ///< parallel to messages_
   std::vector<std::pair<std::string, std::string>> overrides_;  ///< resolved path, text
+  std::vector<std::string> warnings_;
+  std::vector<SourceLocation> warning_where_;  ///< parallel to warnings_
+  [[nodiscard]] std::string format(SourceLocation& where, std::string_view field,
+                                   std::string_view message) const;
 };
 
 /// Edit distance (insertions, deletions, substitutions, each cost 1).

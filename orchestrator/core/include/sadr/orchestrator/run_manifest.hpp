@@ -10,9 +10,17 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sadr::orchestrator {
+
+/// The folder of realization r of an ensemble inside its output folder: "realization_NNNN"
+/// (four digits at least), the one spelling that `run -r`, `--realization`, `ensemble`,
+/// `summary` and the Python package read.
+[[nodiscard]] std::string realization_dir_name(std::uint64_t r);
+/// Whether a folder name is that of a realization (realization_dir_name of some r).
+[[nodiscard]] bool is_realization_dir_name(std::string_view name);
 
 struct RunManifest {
   std::string scene_path;

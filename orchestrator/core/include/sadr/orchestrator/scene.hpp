@@ -218,6 +218,10 @@ struct Scene {
   OutputSettings output;
   SsaSettings ssa;
   std::uint64_t seed = 0;
+  /// What the loader found valid but very likely not meant ("file:line:col: field: message",
+  /// in file order): a term that selects no particle, molecules that never reach the fluid.
+  /// Not part of the scene's meaning (nor of its hash); `sadr validate --strict` refuses them.
+  std::vector<std::string> warnings;
 
   [[nodiscard]] const Species* find_species(std::string_view name) const;
   [[nodiscard]] const AssignedSpecies* find_assigned(std::string_view name) const;

@@ -12,9 +12,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sadr/orchestrator/plan.hpp"
@@ -62,6 +64,7 @@ struct WorkEstimate {
   double sadr_bytes = 0, fluid_bytes = 0, ssa_bytes = 0;  ///< peak RSS per process
   double coupling_steps = 0;
   double substeps_per_step = 0;    ///< fluid sub-steps per coupling step (0: none or not known)
+  double fluid_substeps = 0;       ///< fluid sub-steps in all, one realization (0: not known)
   std::string substep_limit;       ///< what sets them (FluidSubsteps::criterion(); "" not known)
   double stable_time_step = 0;     ///< the backend's binding stability limit at t = 0 [time]
   std::string limiting_criterion;  ///< its name
@@ -70,9 +73,18 @@ struct WorkEstimate {
   /// take about this many bytes (above half the machine's memory or the process limit)
   double substeps_skipped = 0;
   double frames = 0, output_bytes = 0;
-  double molecules = 0;           ///< stochastic copy numbers at t = 0, all species
-  double event_rate = 0;          ///< SSA events per unit time at t = 0 (diffusion + reactions)
-  double events = 0;              ///< event_rate * end time
+  double molecules = 0;   ///< stochastic copy numbers at t = 0, all species
+  double event_rate = 0;  ///< SSA events per unit time at t = 0 (diffusion + reactions)
+  double events = 0;      ///< event_rate * end time
+  /// Wall time of the whole request on a machine like the calibration's (2 cores) [s]: fluid
+  /// sub-steps x particles x the backend's cost, graph rebuilds, SSA events, frames; 0 when the
+  /// fluid's sub-steps are not known. The parts in `time_parts` ("fluid", "graph", "ssa",
+  /// "frames").
+  double wall_seconds = 0;
+  std::vector<std::pair<std::string, double>> time_parts;
+  /// Things to say before a run that are neither limits nor errors (a run longer than
+  /// kLongRunSeconds).
+  std::vector<std::string> notes;
   std::vector<std::string> hard;  ///< limits no option lifts, each with the figures
   std::vector<std::string> soft;  ///< limits lifted by --allow-large
 
@@ -113,6 +125,18 @@ inline constexpr double kSoftFrames = 1e5;
 inline constexpr double kSoftCouplingSteps = 1e8;
 inline constexpr double kSoftParticleSubsteps = 1e12;  ///< particles x fluid sub-steps
 inline constexpr double kSoftEvents = 1e12;            ///< SSA events
+/// Calibrated costs of the time estimate (bench/cost_calibration.py on the examples; the
+/// fluid's per backend in its schema entry, CostPerParticle). Wall time on a 2-core machine.
+inline constexpr double kSsaEventNs = 130;  ///< one SSA event (measured median 140 in 2D, 76 in 1D)
+/// Rebuilding the particle diffusion graph, per particle and coupling step, in 1D, 2D, 3D
+/// (measured 17 and 405; 3D not measured: 4x 2D's, for ~4x the neighbours).
+inline constexpr std::array<double, 3> kGraphRebuildNs{20, 400, 1600};
+inline constexpr double kFrameNsPerParticle = 2600;  ///< writing one particle of one frame
+inline constexpr double kFrameSeconds = 2e-3;        ///< a frame's fixed cost (measured 1.6-2.4 ms)
+/// A coupling step's fixed cost: the service calls and their messages [s].
+inline constexpr double kStepSeconds = 4e-4;
+/// A run whose estimated wall time is above this is announced before it starts [s].
+inline constexpr double kLongRunSeconds = 3600;
 /// Hard: step counters and copy numbers must stay exact integers in a double.
 inline constexpr double kExactIntegerLimit = 9007199254740992.0;  // 2^53
 
