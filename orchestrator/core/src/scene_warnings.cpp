@@ -88,17 +88,20 @@ void warn_inert_wall_molecules(SceneContext& ctx, const Field& f, const Species&
       for (const std::uint32_t i : rg->particles) has_condition[i] = 1;
     }
   }
+  // Only when nothing else starts the species: molecules beside others on inert walls are
+  // inert, not a silent zero.
   double amount = 0;
   std::size_t particles = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind(i) != ParticleKind::kWall || has_condition[i] || sp.initial[i] == 0.0) continue;
+    if (sp.initial[i] == 0.0) continue;
+    if (p.kind(i) != ParticleKind::kWall || has_condition[i]) return;
     amount += sp.stochastic ? sp.initial[i] : sp.initial[i] * p.volume(i);
     ++particles;
   }
   if (particles == 0) return;
   ctx.reader.warning(
       YamlReader::child(f, "initial"),
-      format_number(amount) + " molecules of '" + sp.name + "' start on " +
+      "all " + format_number(amount) + " molecules of '" + sp.name + "' start on " +
           std::to_string(particles) +
           " wall particle(s) without a boundary condition for it: wall particles take no part "
           "for such a species (condition none, the default), so these molecules never reach the "
