@@ -14,7 +14,7 @@
 /// the fluid's spinning tail delayed the SSA (transfer 2.2-2.4 vs 0.7-0.9 ms
 /// per step at 1e4), and since the bulk-fluid SDPD sub-step (the benchmark's) runs in two parallel
 /// regions with point-to-point slab ordering, passive waits cost its 1 -> 2 thread scaling nothing
-/// measurable (bench/results/round4_interleaved.md).
+/// measurable (bench/results/nsm_sdpd_speed_interleaved.md).
 ///
 /// libgomp reads the variables once when it is loaded, so they must be in the
 /// environment before the program starts: if the user set neither

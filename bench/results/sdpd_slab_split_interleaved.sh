@@ -3,7 +3,7 @@
 # the fluid core shared by the SDPD bulk path and tDPD): old = session start 6ab505a (release
 # build in /work/baseline), new = main (release build in /work/main:
 #   cmake --preset release && cmake --build --preset release -j2 --target fluid_bench fluid_tdpd_bench).
-# Run with nothing else on the machine: bash bench/results/round8_interleaved.sh > out.txt
+# Run with nothing else on the machine: bash bench/results/sdpd_slab_split_interleaved.sh > out.txt
 # Ratios to state: new/old particle-steps per CPU-s (1 thread) and per wall-s (2 threads).
 set -u
 OLD=/work/baseline/build/release
