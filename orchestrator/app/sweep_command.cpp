@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <fstream>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
@@ -30,16 +32,20 @@ std::string csv_field(const std::string& s) {
 
 /// Loads every point's scene (realization 0's overrides) so that a bad
 /// parameter value is reported before anything runs, naming the point.
-void validate_points(const SweepManifest& m) {
+/// @return each point's scene warnings, in point order.
+std::vector<std::vector<std::string>> validate_points(const SweepManifest& m) {
   std::string problems;
+  std::vector<std::vector<std::string>> warnings;
   for (const auto& p : m.points) {
     try {
-      load_scene(m.base_scene, m.overrides_of(m.runs.at(p.index * m.realizations)));
+      warnings.push_back(
+          load_scene(m.base_scene, m.overrides_of(m.runs.at(p.index * m.realizations))).warnings);
     } catch (const Error& e) {
       problems += "\npoint " + std::to_string(p.index) + ": " + e.what();
     }
   }
   if (!problems.empty()) throw InvalidArgument("the sweep has invalid points:" + problems);
+  return warnings;
 }
 
 /// Aggregates each point whose runs all finished (and that is not aggregated
@@ -156,7 +162,7 @@ std::size_t print_failures(const SweepManifest& m) {
 /// `sadr sweep --dry-run`: every point's scene checked (with its warnings), and what would
 /// run where; nothing is written or started.
 int print_dry_run(const SweepManifest& m, const fs::path& dir) {
-  validate_points(m);
+  const auto warnings = validate_points(m);
   std::printf("sweep %s: %zu points x %zu realizations = %zu runs (%s executor), in %s\n",
               m.sweep_file.c_str(), m.points.size(), m.realizations, m.runs.size(),
               m.executor.type.c_str(), dir.string().c_str());
@@ -169,8 +175,7 @@ int print_dry_run(const SweepManifest& m, const fs::path& dir) {
     const SweepRun& last = m.runs.at(p.index * m.realizations + m.realizations - 1);
     std::printf("point %zu: %s -> %s .. %s\n", p.index, values.c_str(), first.dir.c_str(),
                 last.dir.c_str());
-    const Scene scene = load_scene(m.base_scene, m.overrides_of(first));
-    for (const auto& w : scene.warnings) std::printf("  warning: %s\n", w.c_str());
+    for (const auto& w : warnings.at(p.index)) std::printf("  warning: %s\n", w.c_str());
   }
   std::printf("dry run: every point's scene is valid; nothing was written or started\n");
   return kExitOk;
@@ -204,7 +209,7 @@ int cmd_sweep(const CliOptions& o) {
       m.retries = fresh.retries;
       m.keep = fresh.keep;
     } else {
-      validate_points(fresh);
+      (void)validate_points(fresh);
       if (o.force) {
         for (const char* sub : {"runs", "points"}) fs::remove_all(dir / sub);
       }

@@ -174,12 +174,14 @@ void warn_empty_observables(SceneContext& ctx, const Field& root) {
   const Scene& s = ctx.scene;
   const auto* backend = fluid::schema::find(s.fluid.backend);
   if (!ctx.particles_ok || backend == nullptr || backend->capabilities.moves_particles) return;
+  // Called only on a scene read without errors: observable k is list element k.
   const Field list = YamlReader::child(YamlReader::child(root, "output"), "observables");
+  if (!list.node.IsSequence() || list.node.size() != s.output.observables.size()) return;
   for (std::size_t k = 0; k < s.output.observables.size(); ++k) {
     const ObservableSpec& o = s.output.observables[k];
     const Region* rg = s.find_region(o.region);
-    if (rg == nullptr || !rg->particles.empty() || !list.node.IsSequence()) continue;
-    ctx.reader.warning(YamlReader::element(list, std::min<std::size_t>(k, list.node.size() - 1)),
+    if (rg == nullptr || !rg->particles.empty()) continue;
+    ctx.reader.warning(YamlReader::element(list, k),
                        "observable '" + o.name + "' is over region '" + o.region +
                            "', which holds no particle, and the '" + s.fluid.backend +
                            "' backend does not move particles: it is zero in every frame");
