@@ -6,6 +6,7 @@
 
 #include "sadr/common/status.hpp"
 #include "sadr/fluid/kernel.hpp"
+#include "sadr/model/chemistry.hpp"
 
 namespace sadr::fluid {
 
@@ -18,24 +19,7 @@ KernelType parse_kernel(std::string_view name) {
 }
 
 namespace {
-struct Problems {
-  std::string text;
-  std::vector<std::pair<std::string, std::string>> details;
-  void add(const std::string& field, double value, const std::string& range) {
-    text += (text.empty() ? "" : "; ") + field + " = " + format_value(value) + " (" + range + ")";
-    details.emplace_back(field, format_value(value));
-  }
-  void add_text(const std::string& field, const std::string& message) {
-    text += (text.empty() ? "" : "; ") + field + ": " + message;
-    details.emplace_back(field, message);
-  }
-};
-bool finite_pos(double v) {
-  return std::isfinite(v) && v > 0;
-}
-bool finite_nonneg(double v) {
-  return std::isfinite(v) && v >= 0;
-}
+using model::Problems;
 }  // namespace
 
 void FluidModel::validate() const {
@@ -45,33 +29,29 @@ void FluidModel::validate() const {
   } catch (const Error& e) {
     p.add_text("box", e.what());
   }
-  if (!finite_pos(smoothing_length))
-    p.add("smoothing_length", smoothing_length, "must be finite and > 0");
+  p.finite_positive("smoothing_length", smoothing_length);
   if (kernel != "lucy" && kernel != "wendland_c2") {
     p.add_text("kernel", "'" + kernel + "' is unknown (known: lucy, wendland_c2)");
   }
-  if (!finite_pos(reference_density)) p.add("reference_density", reference_density, "must be > 0");
+  p.finite_positive("reference_density", reference_density);
   // 0 = not given: only backends with an equation of state need c_0 (sdpd checks it).
-  if (!finite_nonneg(sound_speed)) p.add("sound_speed", sound_speed, "must be >= 0");
-  if (!finite_nonneg(shear_viscosity)) p.add("shear_viscosity", shear_viscosity, "must be >= 0");
-  if (!finite_nonneg(temperature)) p.add("temperature", temperature, "k_B T must be >= 0");
+  p.finite_nonneg("sound_speed", sound_speed);
+  p.finite_nonneg("shear_viscosity", shear_viscosity);
+  p.finite_nonneg("temperature", temperature);
   if (temperature > 0 && shear_viscosity <= 0) {
     p.add("temperature", temperature,
           "thermal noise needs shear_viscosity > 0 (fluctuation-dissipation)");
   }
   for (int a = 0; a < 3; ++a) {
     if (!std::isfinite(gravity[a]))
-      p.add("gravity[" + std::to_string(a) + "]", gravity[a], "must be finite");
+      p.add("gravity[" + std::to_string(a) + "]", gravity[a], "finite");
   }
-  if (!finite_nonneg(density_diffusion))
-    p.add("density_diffusion", density_diffusion, "must be >= 0");
-  if (!finite_nonneg(diffusion_eps)) p.add("diffusion_eps", diffusion_eps, "must be >= 0");
-  if (!finite_nonneg(max_time_step))
-    p.add("max_time_step", max_time_step, "must be >= 0 (0 = automatic)");
-  if (!(density_band > 0 && density_band < 1))
-    p.add("density_band", density_band, "must be in (0, 1)");
+  p.finite_nonneg("density_diffusion", density_diffusion);
+  p.finite_nonneg("diffusion_eps", diffusion_eps);
+  p.finite_nonneg("max_time_step", max_time_step);  // 0 = automatic
+  if (!(density_band > 0 && density_band < 1)) p.add("density_band", density_band, "in (0, 1)");
   if (!(neighbor_skin >= 0 && neighbor_skin <= 1))
-    p.add("neighbor_skin", neighbor_skin, "must be in [0, 1]");
+    p.add("neighbor_skin", neighbor_skin, "in [0, 1]");
   const int ns = static_cast<int>(species.size());
   for (int s = 0; s < ns; ++s) {
     const auto& sp = species[s];
@@ -81,14 +61,13 @@ void FluidModel::validate() const {
       if (species[t].name == sp.name && !sp.name.empty())
         p.add_text(f + ".name", "duplicate '" + sp.name + "'");
     }
-    if (!finite_nonneg(sp.diffusivity)) p.add(f + ".diffusivity", sp.diffusivity, "must be >= 0");
+    p.finite_nonneg(f + ".diffusivity", sp.diffusivity);
     if (!sp.wall_conditions.empty() && sp.wall_conditions.size() != wall_regions.size()) {
-      p.add(
-          f + ".wall_conditions size", static_cast<double>(sp.wall_conditions.size()),
-          "must be 0 or the number of wall_regions (" + std::to_string(wall_regions.size()) + ")");
+      p.add(f + ".wall_conditions size", static_cast<double>(sp.wall_conditions.size()),
+            "0 or the number of wall_regions (" + std::to_string(wall_regions.size()) + ")");
     }
     auto check_wc = [&](const WallCondition& wc, const std::string& name) {
-      if (!std::isfinite(wc.value)) p.add(name + ".value", wc.value, "must be finite");
+      if (!std::isfinite(wc.value)) p.add(name + ".value", wc.value, "finite");
       if (wc.type == WallCondition::Type::kNeumann && sp.diffusivity <= 0) {
         p.add(f + ".diffusivity", sp.diffusivity, "a Neumann wall needs diffusivity > 0");
       }
@@ -101,8 +80,13 @@ void FluidModel::validate() const {
   for (std::size_t r = 0; r < reactions.size(); ++r) {
     const auto& re = reactions[r];
     const std::string f = "reactions[" + std::to_string(r) + "]";
-    if (!finite_nonneg(re.rate)) p.add(f + ".rate", re.rate, "must be >= 0");
-    auto check_side = [&](const std::vector<std::pair<int, int>>& side, const std::string& nm) {
+    model::ReactionNumbers numbers;
+    numbers.rate = re.rate;
+    numbers.has_law = re.law.has_value();
+    numbers.areas = &re.boundary_area;
+    numbers.sites = re.particles.size();
+    auto check_side = [&](const std::vector<std::pair<int, int>>& side, const std::string& nm,
+                          std::vector<long>& counts) {
       for (const auto& [s, nu] : side) {
         if (s < 0 || s >= ns) {
           p.add(f + "." + nm + " species", s, "must index species [0, " + std::to_string(ns) + ")");
@@ -111,24 +95,15 @@ void FluidModel::validate() const {
                      "species '" + species[s].name +
                          "' is stochastic; fluid reactions use deterministic species only");
         }
-        if (nu < 1) p.add(f + "." + nm + " stoichiometry", nu, "must be >= 1");
+        counts.push_back(nu);
       }
     };
-    check_side(re.reactants, "reactants");
-    check_side(re.products, "products");
-    if (!re.boundary_area.empty()) {
-      if (!re.law) p.add_text(f + ".boundary_area", "a boundary flux needs a law");
-      if (re.boundary_area.size() != re.particles.size()) {
-        p.add(f + ".boundary_area size", static_cast<double>(re.boundary_area.size()),
-              "must equal particles' size " + std::to_string(re.particles.size()));
-      }
-      for (std::size_t k = 0; k < re.boundary_area.size(); ++k) {
-        if (!(re.boundary_area[k] > 0 && std::isfinite(re.boundary_area[k]))) {
-          p.add(f + ".boundary_area[" + std::to_string(k) + "]", re.boundary_area[k],
-                "must be finite and > 0");
-        }
-      }
-    }
+    check_side(re.reactants, "reactants", numbers.reactant_counts);
+    check_side(re.products, "products", numbers.product_counts);
+    model::Problems problems;
+    problems.set_prefix(f);
+    model::check(numbers, problems);
+    for (const auto& q : problems.list()) p.add(q.field, q.value, q.allowed);
     if (re.law) {
       std::vector<std::string> names;
       for (const auto& sp : species) names.push_back(sp.name);
@@ -143,7 +118,7 @@ void FluidModel::validate() const {
   }
   if (boussinesq.species >= ns || boussinesq.species < -1) {
     p.add("boussinesq.species", boussinesq.species,
-          "must be -1 (off) or a species index < " + std::to_string(ns));
+          "-1 (off) or a species index < " + std::to_string(ns));
   }
   if (!std::isfinite(boussinesq.coefficient) || !std::isfinite(boussinesq.reference)) {
     p.add("boussinesq.coefficient", boussinesq.coefficient,
@@ -153,8 +128,7 @@ void FluidModel::validate() const {
     const auto& n = wall_regions[w].inward_normal;
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (!(std::fabs(len - 1.0) < 1e-6)) {
-      p.add("wall_regions[" + std::to_string(w) + "].inward_normal |n|", len,
-            "must be a unit vector");
+      p.add("wall_regions[" + std::to_string(w) + "].inward_normal |n|", len, "a unit vector");
     }
   }
   if (open_boundary.enabled) {
@@ -162,7 +136,7 @@ void FluidModel::validate() const {
     const int d = box.dimension;
     const std::string f = "open_boundary";
     if (ob.axis < 0 || ob.axis >= d) {
-      p.add(f + ".axis", ob.axis, "must be an active axis [0, " + std::to_string(d) + ")");
+      p.add(f + ".axis", ob.axis, "an active axis [0, " + std::to_string(d) + ")");
     } else {
       const int a = ob.axis;
       if (box.periodic[a]) p.add_text(f + ".axis", "the flow axis must be walled, not periodic");
@@ -182,11 +156,11 @@ void FluidModel::validate() const {
               "outlet_hi - fluid_hi must be >= the kernel support h = " + format_value(hs));
       }
       if (!(ob.fluid_hi > ob.fluid_lo)) {
-        p.add(f + ".fluid_hi", ob.fluid_hi, "must be > fluid_lo = " + format_value(ob.fluid_lo));
+        p.add(f + ".fluid_hi", ob.fluid_hi, "> fluid_lo = " + format_value(ob.fluid_lo));
       }
     }
     if (!(std::isfinite(ob.mean_velocity) && ob.mean_velocity > 0)) {
-      p.add(f + ".mean_velocity", ob.mean_velocity, "must be finite and > 0 (flow along +axis)");
+      p.add(f + ".mean_velocity", ob.mean_velocity, "finite and > 0 (flow along +axis)");
     }
     if (ob.profile == OpenBoundary::Profile::kParabolic) {
       if (ob.cross_axis < 0 || ob.cross_axis >= d || ob.cross_axis == ob.axis) {
@@ -194,12 +168,11 @@ void FluidModel::validate() const {
               "a parabolic profile needs an active axis other than the flow axis");
       }
       if (!(std::isfinite(ob.wall_lo) && std::isfinite(ob.wall_hi) && ob.wall_hi > ob.wall_lo)) {
-        p.add(f + ".wall_hi", ob.wall_hi,
-              "must be finite and > wall_lo = " + format_value(ob.wall_lo));
+        p.add(f + ".wall_hi", ob.wall_hi, "finite and > wall_lo = " + format_value(ob.wall_lo));
       }
     }
   }
-  if (!p.text.empty()) throw InvalidArgument("invalid fluid model: " + p.text, p.details);
+  p.throw_if_any("invalid fluid model");
 }
 
 std::vector<std::int32_t> FluidModel::assign_wall_regions(const ParticleState& state) const {

@@ -7,6 +7,7 @@
 
 #include "sadr/fluid/fluid_service.hpp"
 #include "sadr/wire/convert.hpp"
+#include "sadr/wire/model_proto.hpp"
 
 namespace sadr::fluid {
 namespace {
@@ -20,67 +21,49 @@ std::array<double, 3> vec3(const google::protobuf::RepeatedField<double>& v,
   return {v[0], v[1], v[2]};
 }
 
-WallCondition wall_condition(const common::v1::WallBoundary& w) {
-  switch (w.condition()) {
-    case common::v1::WALL_CONDITION_DIRICHLET:
-      return {WallCondition::Type::kDirichlet, w.value()};
-    case common::v1::WALL_CONDITION_NEUMANN:
-      return {WallCondition::Type::kNeumann, w.value()};
-    case common::v1::WALL_CONDITION_FREE:
+WallCondition wall_condition(const model::SpeciesBoundary& w) {
+  switch (w.condition) {
+    case model::BoundaryCondition::kDirichlet:
+      return {WallCondition::Type::kDirichlet, w.value};
+    case model::BoundaryCondition::kNeumann:
+      return {WallCondition::Type::kNeumann, w.value};
+    case model::BoundaryCondition::kFree:
       return {WallCondition::Type::kFree, 0.0};
     default:
       return {WallCondition::Type::kNoFlux, 0.0};
   }
 }
 
-std::vector<std::pair<int, int>> stoichiometry(
-    const google::protobuf::RepeatedPtrField<common::v1::StoichiometryEntry>& entries,
-    const FluidModel& m, const std::string& where) {
+std::vector<std::pair<int, int>> stoichiometry(const std::vector<model::StoichiometryEntry>& side,
+                                               const FluidModel& m, const std::string& where) {
   std::vector<std::pair<int, int>> out;
-  for (int k = 0; k < entries.size(); ++k) {
-    const int s = m.species_index(entries.Get(k).species());
+  for (std::size_t k = 0; k < side.size(); ++k) {
+    const int s = m.species_index(side[k].species);
     const std::string here = where + "[" + std::to_string(k) + "]";
     if (s < 0 || !m.species[static_cast<std::size_t>(s)].deterministic) {
-      throw InvalidArgument(here + ".species = '" + entries.Get(k).species() +
+      throw InvalidArgument(here + ".species = '" + side[k].species +
                             "' is not a deterministic species of this scene");
     }
-    out.emplace_back(s, static_cast<int>(entries.Get(k).count()));
+    out.emplace_back(s, static_cast<int>(side[k].count));
   }
   return out;
 }
 
 /// The typed FluidModel.open_boundary (FluidModel::validate() checks the channel against the box
 /// and h).
-OpenBoundary open_boundary(const v1::OpenBoundary& in, const std::string& where) {
+OpenBoundary open_boundary(const model::OpenBoundarySettings& in) {
   OpenBoundary ob;
   ob.enabled = true;
-  auto axis = [&](std::uint32_t v, const char* field) {
-    if (v > 2) {
-      throw InvalidArgument(where + "." + field + " = " + std::to_string(v) +
-                            " (allowed: 0, 1, 2)");
-    }
-    return static_cast<int>(v);
-  };
-  ob.axis = axis(in.axis(), "axis");
-  ob.inlet_lo = in.inlet_lo();
-  ob.fluid_lo = in.fluid_lo();
-  ob.fluid_hi = in.fluid_hi();
-  ob.outlet_hi = in.outlet_hi();
-  switch (in.profile()) {
-    case v1::OpenBoundary::PROFILE_UNIFORM:
-      ob.profile = OpenBoundary::Profile::kUniform;
-      break;
-    case v1::OpenBoundary::PROFILE_PARABOLIC:
-      ob.profile = OpenBoundary::Profile::kParabolic;
-      break;
-    default:
-      throw InvalidArgument(where + ".profile = " + std::to_string(in.profile()) +
-                            " (allowed: PROFILE_UNIFORM, PROFILE_PARABOLIC)");
-  }
-  ob.mean_velocity = in.mean_velocity();
-  ob.cross_axis = axis(in.cross_axis(), "cross_axis");
-  ob.wall_lo = in.wall_lo();
-  ob.wall_hi = in.wall_hi();
+  ob.axis = in.axis;
+  ob.inlet_lo = in.inlet_lo;
+  ob.fluid_lo = in.fluid_lo;
+  ob.fluid_hi = in.fluid_hi;
+  ob.outlet_hi = in.outlet_hi;
+  ob.profile = in.parabolic ? OpenBoundary::Profile::kParabolic : OpenBoundary::Profile::kUniform;
+  ob.mean_velocity = in.mean_velocity;
+  ob.cross_axis = in.cross_axis;
+  ob.wall_lo = in.wall_lo;
+  ob.wall_hi = in.wall_hi;
   return ob;
 }
 
@@ -121,27 +104,31 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     m.wall_regions.push_back(std::move(region));
     wall_region_index.emplace(p.region(), m.wall_regions.size() - 1);
   }
+  // The model's own checks (the same the scene loader ran), then index resolution.
+  model::Problems problems;
   for (int s = 0; s < in.species_size(); ++s) {
-    const auto& sp = in.species(s);
+    const std::string at = where + ".species[" + std::to_string(s) + "]";
+    const model::Species sp = wire::from_proto(in.species(s), at);
+    problems.set_prefix(at);
+    model::check(sp, problems);
     SpeciesSpec spec;
-    spec.name = sp.name();
-    spec.diffusivity = sp.diffusivity();
-    spec.deterministic = !sp.stochastic();
-    for (int w = 0; w < sp.walls_size(); ++w) {
-      const auto& wall = sp.walls(w);
-      if (wall.region().empty()) {
+    spec.name = sp.name;
+    spec.diffusivity = sp.diffusivity;
+    spec.deterministic = !sp.stochastic;
+    for (std::size_t w = 0; w < sp.boundaries.size(); ++w) {
+      const model::SpeciesBoundary& wall = sp.boundaries[w];
+      if (wall.region.empty()) {
         spec.default_wall = wall_condition(wall);
         continue;
       }
-      const std::string here =
-          where + ".species[" + std::to_string(s) + "].walls[" + std::to_string(w) + "]";
-      auto it = wall_region_index.find(wall.region());
+      const std::string here = at + ".walls[" + std::to_string(w) + "]";
+      auto it = wall_region_index.find(wall.region);
       if (it == wall_region_index.end()) {
         WallRegion region;
-        region.name = wall.region();
-        region.particles = wire::region_particles(regions, wall.region(), here);
+        region.name = wall.region;
+        region.particles = wire::region_particles(regions, wall.region, here);
         m.wall_regions.push_back(std::move(region));
-        it = wall_region_index.emplace(wall.region(), m.wall_regions.size() - 1).first;
+        it = wall_region_index.emplace(wall.region, m.wall_regions.size() - 1).first;
       }
       spec.wall_conditions.resize(m.wall_regions.size(), spec.default_wall);
       spec.wall_conditions[it->second] = wall_condition(wall);
@@ -153,31 +140,31 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     spec.wall_conditions.resize(m.wall_regions.size(), spec.default_wall);
 
   for (int r = 0; r < in.reactions_size(); ++r) {
-    const auto& rx = in.reactions(r);
     const std::string here = where + ".reactions[" + std::to_string(r) + "]";
+    const model::Reaction rx = wire::from_proto(in.reactions(r), here);
+    problems.set_prefix(here);
+    model::check(rx, problems);
     ReactionSpec spec;
-    for (int k = 0; k < rx.kinds_size(); ++k) {
-      if (rx.kinds(k) > 3) {
-        throw InvalidArgument(here + ".kinds[" + std::to_string(k) +
-                              "] = " + std::to_string(rx.kinds(k)) + " (allowed: 0..3)");
-      }
-      spec.kinds.push_back(static_cast<ParticleKind>(rx.kinds(k)));
-    }
-    for (const auto& name : rx.regions()) {
+    spec.kinds = rx.kinds;
+    for (const auto& name : rx.regions) {
       const auto& v = wire::region_particles(regions, name, here + ".regions");
       spec.particles.insert(spec.particles.end(), v.begin(), v.end());
     }
     std::sort(spec.particles.begin(), spec.particles.end());  // regions may overlap
     spec.particles.erase(std::unique(spec.particles.begin(), spec.particles.end()),
                          spec.particles.end());
-    spec.name = rx.name();
-    spec.reactants = stoichiometry(rx.reactants(), m, here + ".reactants");
-    spec.products = stoichiometry(rx.products(), m, here + ".products");
-    spec.rate = rx.rate();
-    if (rx.has_law()) spec.law = wire::from_proto(rx.law(), here + ".law");
-    wire::boundary_flux_sites(rx, here, spec.particles, spec.boundary_area);
+    spec.name = rx.name;
+    spec.reactants = stoichiometry(rx.reactants, m, here + ".reactants");
+    spec.products = stoichiometry(rx.products, m, here + ".products");
+    spec.rate = rx.rate;
+    spec.law = rx.law;
+    if (!rx.boundary_particles.empty()) {
+      spec.particles = rx.boundary_particles;
+      spec.boundary_area = rx.boundary_areas;
+    }
     m.reactions.push_back(std::move(spec));
   }
+  problems.throw_if_any();
 
   switch (in.density_mode()) {
     case v1::DENSITY_MODE_CONTINUITY:
@@ -207,7 +194,7 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
                           "surface of each region of wall particles)");
   }
   if (in.has_open_boundary()) {
-    m.open_boundary = open_boundary(in.open_boundary(), where + ".open_boundary");
+    m.open_boundary = open_boundary(wire::from_proto(in.open_boundary(), where + ".open_boundary"));
   }
   for (const auto& [key, path] : in.files()) m.backend_files[key] = path;
   for (const auto& [key, value] : in.parameters()) {

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "sadr/wire/convert.hpp"
+#include "sadr/wire/model_proto.hpp"
 
 namespace sadr::orchestrator {
 namespace {
@@ -15,57 +16,19 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-void to_proto(const Species& in, common::v1::Species& out, std::set<std::string>& regions_used) {
-  out.set_name(in.name);
-  out.set_stochastic(in.stochastic);
-  out.set_diffusivity(in.diffusivity);
+/// The model's message, the regions it names into `regions_used`.
+void add_species(const Species& in, common::v1::Species& out, std::set<std::string>& regions_used) {
+  wire::to_proto(in, out);
   for (const auto& b : in.boundaries) {
-    if (b.condition == BoundaryCondition::kInflow) continue;  // not a wall: make_ssa_init
-    auto* w = out.add_walls();
-    w->set_region(b.region);
-    w->set_value(b.value);
-    switch (b.condition) {
-      case BoundaryCondition::kNone:
-        w->set_condition(common::v1::WALL_CONDITION_NONE);
-        break;
-      case BoundaryCondition::kDirichlet:
-        w->set_condition(common::v1::WALL_CONDITION_DIRICHLET);
-        break;
-      case BoundaryCondition::kNeumann:
-        w->set_condition(common::v1::WALL_CONDITION_NEUMANN);
-        break;
-      case BoundaryCondition::kFree:
-        w->set_condition(common::v1::WALL_CONDITION_FREE);
-        break;
-      case BoundaryCondition::kInflow:
-        break;
-    }
-    if (!b.region.empty()) regions_used.insert(b.region);
+    if (b.condition != BoundaryCondition::kInflow && !b.region.empty())
+      regions_used.insert(b.region);
   }
 }
 
-void to_proto(const Reaction& in, common::v1::Reaction& out, std::set<std::string>& regions_used) {
-  out.set_name(in.name);
-  for (const auto& e : in.reactants) {
-    auto* p = out.add_reactants();
-    p->set_species(e.species);
-    p->set_count(e.count);
-  }
-  for (const auto& e : in.products) {
-    auto* p = out.add_products();
-    p->set_species(e.species);
-    p->set_count(e.count);
-  }
-  out.set_rate(in.rate);
-  if (in.law) wire::to_proto(*in.law, *out.mutable_law());
-  for (auto k : in.kinds) out.add_kinds(static_cast<std::uint32_t>(k));
-  for (const auto& r : in.regions) {
-    out.add_regions(r);
-    regions_used.insert(r);
-  }
-  out.mutable_boundary_particles()->Assign(in.boundary_particles.begin(),
-                                           in.boundary_particles.end());
-  out.mutable_boundary_areas()->Assign(in.boundary_areas.begin(), in.boundary_areas.end());
+void add_reaction(const Reaction& in, common::v1::Reaction& out,
+                  std::set<std::string>& regions_used) {
+  wire::to_proto(in, out);
+  regions_used.insert(in.regions.begin(), in.regions.end());
 }
 
 template <class RepeatedRegions>
@@ -84,13 +47,7 @@ void add_wall_planes(const Scene& scene,
                      google::protobuf::RepeatedPtrField<common::v1::WallPlane>& out,
                      std::set<std::string>& regions_used) {
   for (const auto& p : scene.fluid.wall_planes) {
-    auto* w = out.Add();
-    w->set_region(p.region);
-    for (int a = 0; a < 3; ++a) {
-      w->add_point(p.point[a]);
-      if (p.radius == 0) w->add_normal(p.normal[a]);
-    }
-    w->set_radius(p.radius);
+    wire::to_proto(p, *out.Add());
     regions_used.insert(p.region);
   }
 }
@@ -128,20 +85,6 @@ fluid::v1::WallModel wall_model(const std::string& name) {
   throw InvalidArgument("fluid.wall_model = '" + name + "' (allowed: stationary, morris)");
 }
 
-void to_proto(const OpenBoundarySettings& in, fluid::v1::OpenBoundary& out) {
-  out.set_axis(static_cast<std::uint32_t>(in.axis));
-  out.set_inlet_lo(in.inlet_lo);
-  out.set_fluid_lo(in.fluid_lo);
-  out.set_fluid_hi(in.fluid_hi);
-  out.set_outlet_hi(in.outlet_hi);
-  out.set_profile(in.parabolic ? fluid::v1::OpenBoundary::PROFILE_PARABOLIC
-                               : fluid::v1::OpenBoundary::PROFILE_UNIFORM);
-  out.set_mean_velocity(in.mean_velocity);
-  out.set_cross_axis(static_cast<std::uint32_t>(in.cross_axis));
-  out.set_wall_lo(in.wall_lo);
-  out.set_wall_hi(in.wall_hi);
-}
-
 }  // namespace
 
 fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std::uint64_t seed) {
@@ -164,7 +107,7 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
   m->set_wall_model(wall_model(f.wall_model));
   for (const auto& [k, v] : f.parameters) (*m->mutable_parameters())[k] = v;
   for (const auto& [k, v] : f.files) (*m->mutable_files())[k] = v;
-  if (f.open_boundary) to_proto(*f.open_boundary, *m->mutable_open_boundary());
+  if (f.open_boundary) wire::to_proto(*f.open_boundary, *m->mutable_open_boundary());
   if (f.boussinesq) {
     m->set_buoyancy_species(f.boussinesq->species);
     m->set_buoyancy_coefficient(f.boussinesq->coefficient);
@@ -174,7 +117,7 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
   std::set<std::string> regions_used;
   for (const auto& s : scene.species) {
     if (!contains(plan.fluid_species, s.name)) continue;
-    to_proto(s, *m->add_species(), regions_used);
+    add_species(s, *m->add_species(), regions_used);
     if (!s.stochastic) {
       add_inflows(scene, s, *m);  // a stochastic species' buffer is held by ssa_service
       auto* c = init.mutable_concentrations()->add_species();
@@ -183,7 +126,7 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
     }
   }
   for (const auto& r : scene.reactions) {
-    if (!r.stochastic) to_proto(r, *m->add_reactions(), regions_used);
+    if (!r.stochastic) add_reaction(r, *m->add_reactions(), regions_used);
   }
   add_wall_planes(scene, *m->mutable_wall_planes(), regions_used);
   add_regions(scene, regions_used, m->mutable_regions());
@@ -198,14 +141,12 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
   wire::to_proto(scene.box, *m->mutable_box());
   m->set_smoothing_length(scene.fluid.smoothing_length);
   m->set_regularization(scene.ssa.regularization);
-  m->set_convention(scene.ssa.convention == JumpConvention::kSymmetric
-                        ? ssa::v1::JUMP_CONVENTION_SYMMETRIC
-                        : ssa::v1::JUMP_CONVENTION_VOLUME);
+  m->set_convention(wire::to_proto(scene.ssa.convention));
   m->set_seed(seed);
   std::set<std::string> regions_used;
   for (const auto& s : scene.species) {
     if (!s.stochastic || !contains(plan.ssa_species, s.name)) continue;
-    to_proto(s, *m->add_species(), regions_used);
+    add_species(s, *m->add_species(), regions_used);
     add_inflows(scene, s, *m);
     auto* c = init.mutable_counts()->add_species();
     c->set_name(s.name);
@@ -214,7 +155,7 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
     for (double v : s.initial) counts->Add(static_cast<std::int64_t>(std::llround(v)));
   }
   for (const auto& r : scene.reactions) {
-    if (r.stochastic) to_proto(r, *m->add_reactions(), regions_used);
+    if (r.stochastic) add_reaction(r, *m->add_reactions(), regions_used);
   }
   for (const auto& s : plan.frozen_species) m->add_frozen_species(s);
   // Morris walls (fluid.wall_model morris): the stochastic species' Dirichlet reservoirs hold

@@ -354,7 +354,7 @@ std::vector<StoichiometryEntry> read_stoichiometry(SceneContext& ctx, const Fiel
 /// Checks the species of a reaction; returns whether they are stochastic
 /// (nullopt if unknown or mixed; reported).
 std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where,
-                                           const Reaction& rx, bool has_law) {
+                                           const Reaction& rx) {
   std::vector<std::string_view> known;
   for (const auto& sp : ctx.scene.species) known.push_back(sp.name);
   std::optional<bool> stochastic;
@@ -387,12 +387,6 @@ std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where
       }
     }
   }
-  if (rx.order() > 2 && !has_law) {
-    ctx.reader.error(where, "order " + std::to_string(rx.order()) +
-                                " is not allowed; allowed: mass-action order 0, 1 or 2 "
-                                "(split higher-order reactions into elementary steps)");
-    ok = false;
-  }
   if (!ok) return std::nullopt;
   return stochastic.value_or(true);
 }
@@ -424,6 +418,11 @@ void read_species(SceneContext& ctx, const Field& root) {
           r.number(f, "diffusivity", Bound::kNonNegative, "length^2/time", true).value_or(0.0);
       read_initial(ctx, f, sp);
       read_boundaries(ctx, f, sp);
+      model::Problems problems;  // the model's range checks, reported at their keys
+      model::check(sp, problems);
+      const std::pair<std::string_view, std::string_view> units[] = {
+          {"diffusivity", "length^2/time"}};
+      r.report(f, problems, units);
       warn_inert_wall_molecules(ctx, f, sp);
       ctx.scene.species.push_back(std::move(sp));
     }
@@ -518,8 +517,7 @@ void read_reactions(SceneContext& ctx, const Field& root) {
         }
       }
     }
-    const auto stochastic =
-        check_reaction_species(ctx, eqf.node.IsDefined() ? eqf : f, rx, has_law);
+    const auto stochastic = check_reaction_species(ctx, eqf.node.IsDefined() ? eqf : f, rx);
     if (stochastic) rx.stochastic = *stochastic;
     if (stochastic && !*stochastic && !backend_has_wall_species_terms(ctx) &&
         std::any_of(rx.kinds.begin(), rx.kinds.end(),
@@ -528,6 +526,12 @@ void read_reactions(SceneContext& ctx, const Field& root) {
                        "the deterministic reaction '" + rx.name + "' with kinds beyond fluid");
     }
     if (stochastic && has_law) read_law(ctx, f, rx);
+    model::Problems problems;  // the model's range checks, reported at their keys
+    model::check(rx, problems);
+    const std::pair<std::string_view, std::string_view> units[] = {{"rate", unit}};
+    const std::pair<std::string_view, Field> equation[] = {{"reactants", eqf}, {"products", eqf}};
+    r.report(f, problems, units,
+             YamlReader::present(eqf) ? std::span(equation) : std::span(equation).first(0));
     warn_reaction_selects_nothing(ctx, f, rx);
     if (!has_law && rx.rate == 0.0 && YamlReader::present(YamlReader::child(f, "rate"))) {
       r.warning(YamlReader::child(f, "rate"),

@@ -134,7 +134,7 @@ void read_boundary_fluxes(SceneContext& ctx, const Field& root) {
       }
     }
     const Field where = YamlReader::present(eqf) ? eqf : spf;
-    const auto stochastic = check_reaction_species(ctx, where, rx, true);
+    const auto stochastic = check_reaction_species(ctx, where, rx);
     const auto face = r.choice(f, "face", kFaces, true, "face");
     if (!YamlReader::present(YamlReader::child(f, "law"))) {
       r.error(f,

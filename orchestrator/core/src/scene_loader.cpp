@@ -266,22 +266,6 @@ Scene load_scene(const std::filesystem::path& path, std::span<const SceneOverrid
 
 // ---- small Scene members -------------------------------------------------
 
-std::string_view to_string(BoundaryCondition condition) {
-  switch (condition) {
-    case BoundaryCondition::kNone:
-      return "none";
-    case BoundaryCondition::kDirichlet:
-      return "dirichlet";
-    case BoundaryCondition::kNeumann:
-      return "neumann";
-    case BoundaryCondition::kFree:
-      return "free";
-    case BoundaryCondition::kInflow:
-      return "inflow";
-  }
-  return "unknown";
-}
-
 std::string_view to_string(Splitting splitting) {
   return splitting == Splitting::kStrang ? "strang" : "lie";
 }
@@ -296,16 +280,6 @@ std::string_view to_string(OutputFormat format) {
       return "csv";
   }
   return "unknown";
-}
-
-std::string_view to_string(JumpConvention convention) {
-  return convention == JumpConvention::kVolume ? "volume" : "symmetric";
-}
-
-unsigned Reaction::order() const {
-  unsigned n = 0;
-  for (const auto& e : reactants) n += e.count;
-  return n;
 }
 
 const Species* Scene::find_species(std::string_view n) const {

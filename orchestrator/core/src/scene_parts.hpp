@@ -66,7 +66,7 @@ void read_boundary_fluxes(SceneContext& ctx, const Field& root);
 /// Checks the species of a reaction (declared, one path); returns whether they are
 /// stochastic (nullopt if unknown or mixed; reported at `where`).
 std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where,
-                                           const Reaction& rx, bool has_law);
+                                           const Reaction& rx);
 /// Top-level "parameters" (scene_laws.cpp): named constants of rate laws.
 void read_parameters(SceneContext& ctx, const Field& root);
 /// Reports parameters that have the name of a species (after read_species).

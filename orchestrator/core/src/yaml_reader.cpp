@@ -59,6 +59,59 @@ Field YamlReader::element(const Field& parent, std::size_t i) {
   return f;
 }
 
+Field YamlReader::resolve(const Field& object, std::string_view path) {
+  Field at = object;
+  std::size_t i = 0;
+  while (i < path.size()) {
+    Field next;
+    if (path[i] == '[') {
+      const std::size_t close = path.find(']', i);
+      if (close == std::string_view::npos || !at.node.IsSequence()) break;
+      std::size_t k = 0;
+      for (std::size_t c = i + 1; c < close; ++c)
+        k = 10 * k + static_cast<std::size_t>(path[c] - '0');
+      if (k >= at.node.size()) break;
+      next = element(at, k);
+      i = close + 1;
+    } else {
+      if (path[i] == '.') ++i;
+      const std::size_t end = path.find_first_of(".[", i);
+      const std::string_view key = path.substr(i, end - i);
+      next = child(at, key);
+      if (!present(next)) break;
+      i = end == std::string_view::npos ? path.size() : end;
+    }
+    at = next;
+  }
+  return at;
+}
+
+void YamlReader::report(const Field& object, const model::Problems& problems,
+                        std::span<const std::pair<std::string_view, std::string_view>> units,
+                        std::span<const std::pair<std::string_view, Field>> aliases) {
+  for (const model::Problem& p : problems.list()) {
+    const Field* alias = nullptr;
+    for (const auto& [prefix, field] : aliases) {
+      if (p.field.starts_with(prefix)) alias = &field;
+    }
+    const Field at = alias ? *alias : resolve(object, p.field);
+    const std::string path = alias                    ? alias->path
+                             : p.field.empty()        ? object.path
+                             : object.path.empty()    ? p.field
+                             : p.field.front() == '[' ? object.path + p.field
+                                                      : object.path + "." + p.field;
+    if (p.value.empty()) {
+      diag_.error(at.where, path, p.allowed);
+      continue;
+    }
+    std::string allowed = p.allowed;
+    for (const auto& [field, unit] : units) {
+      if (field == p.field) allowed += " [" + std::string(unit) + "]";
+    }
+    diag_.error(at.where, path, p.value + " is out of range; allowed: " + allowed);
+  }
+}
+
 bool YamlReader::expect_map(const Field& f, std::span<const std::string_view> allowed) {
   if (!f.node.IsMap()) {
     error(f, "expected a map with keys (" + join_names(allowed) + "), got " + quoted(f.node));

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sadr/model/problems.hpp"
 #include "sadr/orchestrator/diagnostics.hpp"
 
 namespace sadr::orchestrator::detail {
@@ -51,6 +52,18 @@ class YamlReader {
   bool expect_map(const Field& f, std::span<const std::string_view> allowed);
   /// False (and reported) if `f` is present but not a sequence.
   bool expect_sequence(const Field& f);
+
+  /// The deepest node the file has along `path` below `object` ("reactants[0].count": the
+  /// reactants list's first entry's count, or the nearest present ancestor).
+  static Field resolve(const Field& object, std::string_view path);
+  /// Reports each of the model's problems (model::check on what was read from `object`) at
+  /// its field's node: "VALUE is out of range; allowed: ALLOWED [unit]", the unit from
+  /// `units` by the problem's field (e.g. {"rate", "1/time"}).
+  /// A problem whose field starts with an `aliases` key is reported at that alias's field
+  /// instead (a reaction's "reactants" at its "equation" when it has one).
+  void report(const Field& object, const model::Problems& problems,
+              std::span<const std::pair<std::string_view, std::string_view>> units = {},
+              std::span<const std::pair<std::string_view, Field>> aliases = {});
 
   /// A finite number in `bound`; nullopt when absent (reported if `required`)
   /// or invalid (reported). `unit` is printed in messages, e.g. "length".

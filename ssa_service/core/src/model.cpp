@@ -11,21 +11,7 @@
 
 namespace sadr::ssa {
 
-std::string_view to_string(JumpConvention convention) {
-  switch (convention) {
-    case JumpConvention::kSymmetric:
-      return "symmetric";
-    case JumpConvention::kVolume:
-      return "volume";
-  }
-  return "unknown";
-}
-
 namespace {
-
-bool finite_nonneg(double v) {
-  return std::isfinite(v) && v >= 0;
-}
 
 void check_species_ref(std::vector<std::string>& issues, const std::string& field, int s,
                        std::size_t n_species) {
@@ -39,6 +25,7 @@ void check_species_ref(std::vector<std::string>& issues, const std::string& fiel
 
 void Model::validate() const {
   std::vector<std::string> issues;
+  model::Problems checks;  // the shared range checks (sadr/model/problems.hpp)
   const std::size_t ns = species.size();
   if (ns == 0) issues.emplace_back("species: empty (at least one species is required)");
   std::set<std::string> names;
@@ -54,26 +41,20 @@ void Model::validate() const {
     if (!names.insert(species[s].name).second) {
       issues.push_back(f + ".name = '" + species[s].name + "' is a duplicate");
     }
-    if (!finite_nonneg(species[s].diffusivity)) {
-      issues.push_back(f + ".diffusivity = " + format_value(species[s].diffusivity) +
-                       " (allowed: finite and >= 0)");
-    }
+    checks.finite_nonneg(f + ".diffusivity", species[s].diffusivity);
   }
   for (std::size_t r = 0; r < reactions.size(); ++r) {
     const Reaction& rx = reactions[r];
     const std::string f = "reactions[" + std::to_string(r) + "] '" + rx.name + "'";
-    if (!finite_nonneg(rx.rate)) {
-      issues.push_back(f + ".rate = " + format_value(rx.rate) + " (allowed: finite and >= 0)");
-    }
-    int order = 0;
+    model::ReactionNumbers numbers;
+    numbers.rate = rx.rate;
+    numbers.has_law = rx.law.has_value();
+    numbers.areas = &rx.areas;
+    numbers.sites = rx.voxels.size();
     for (std::size_t k = 0; k < rx.reactants.size(); ++k) {
       const std::string fk = f + ".reactants[" + std::to_string(k) + "]";
       check_species_ref(issues, fk + ".species", rx.reactants[k].first, ns);
-      if (rx.reactants[k].second < 1) {
-        issues.push_back(fk + ".stoichiometry = " + std::to_string(rx.reactants[k].second) +
-                         " (allowed: >= 1)");
-      }
-      order += rx.reactants[k].second;
+      numbers.reactant_counts.push_back(rx.reactants[k].second);
       for (std::size_t l = 0; l < k; ++l) {
         if (rx.reactants[l].first == rx.reactants[k].first) {
           issues.push_back(fk + ": species " + std::to_string(rx.reactants[k].first) +
@@ -81,34 +62,20 @@ void Model::validate() const {
         }
       }
     }
+    for (std::size_t k = 0; k < rx.products.size(); ++k) {
+      check_species_ref(issues, f + ".products[" + std::to_string(k) + "].species",
+                        rx.products[k].first, ns);
+      numbers.product_counts.push_back(rx.products[k].second);
+    }
+    model::Problems problems;
+    problems.set_prefix(f);
+    model::check(numbers, problems);
+    for (const auto& p : problems.list()) issues.push_back(p.message());
     if (rx.law) {
       try {
         (void)rate_law::RateLaw(*rx.law, law_names());
       } catch (const InvalidArgument& e) {
         issues.push_back(f + ".law: " + e.what());
-      }
-    } else if (order > 2) {
-      issues.push_back(f + ": total order = " + std::to_string(order) + " (allowed: 0, 1, 2)");
-    }
-    if (!rx.areas.empty()) {
-      if (!rx.law) issues.push_back(f + ".areas: a boundary flux needs a law");
-      if (rx.areas.size() != rx.voxels.size()) {
-        issues.push_back(f + ".areas: " + std::to_string(rx.areas.size()) + " areas for " +
-                         std::to_string(rx.voxels.size()) + " voxels (allowed: one per voxel)");
-      }
-      for (std::size_t k = 0; k < rx.areas.size(); ++k) {
-        if (!(rx.areas[k] > 0 && std::isfinite(rx.areas[k]))) {
-          issues.push_back(f + ".areas[" + std::to_string(k) + "] = " + format_value(rx.areas[k]) +
-                           " (allowed: finite and > 0)");
-        }
-      }
-    }
-    for (std::size_t k = 0; k < rx.products.size(); ++k) {
-      const std::string fk = f + ".products[" + std::to_string(k) + "]";
-      check_species_ref(issues, fk + ".species", rx.products[k].first, ns);
-      if (rx.products[k].second < 1) {
-        issues.push_back(fk + ".stoichiometry = " + std::to_string(rx.products[k].second) +
-                         " (allowed: >= 1)");
       }
     }
   }
@@ -129,17 +96,11 @@ void Model::validate() const {
       }
     }
   }
-  if (!finite_nonneg(regularization)) {
-    issues.push_back("regularization = " + format_value(regularization) +
-                     " (allowed: finite and >= 0)");
-  }
+  checks.finite_nonneg("regularization", regularization);
   for (std::size_t k = 0; k < reservoirs.size(); ++k) {
     const std::string f = "reservoirs[" + std::to_string(k) + "]";
     check_species_ref(issues, f + ".species", reservoirs[k].species, ns);
-    if (!finite_nonneg(reservoirs[k].concentration)) {
-      issues.push_back(f + ".concentration = " + format_value(reservoirs[k].concentration) +
-                       " (allowed: finite and >= 0)");
-    }
+    checks.finite_nonneg(f + ".concentration", reservoirs[k].concentration);
     for (std::size_t l = 0; l < k; ++l) {
       if (reservoirs[l].species == reservoirs[k].species && reservoirs[l].voxels.empty() &&
           reservoirs[k].voxels.empty()) {
@@ -151,10 +112,7 @@ void Model::validate() const {
   for (std::size_t k = 0; k < neumann.size(); ++k) {
     const std::string f = "neumann[" + std::to_string(k) + "]";
     check_species_ref(issues, f + ".species", neumann[k].species, ns);
-    if (!finite_nonneg(neumann[k].flux)) {
-      issues.push_back(f + ".flux = " + format_value(neumann[k].flux) +
-                       " (allowed: finite and >= 0)");
-    }
+    checks.finite_nonneg(f + ".flux", neumann[k].flux);
   }
   for (std::size_t k = 0; k < free_walls.size(); ++k) {
     const FreeWall& fw = free_walls[k];
@@ -186,7 +144,7 @@ void Model::validate() const {
     if (!std::all_of(w.point.begin(), w.point.end(), [](double x) { return std::isfinite(x); })) {
       issues.push_back(f + ".surface.point: not finite");
     }
-    if (!finite_nonneg(w.radius)) {
+    if (!(std::isfinite(w.radius) && w.radius >= 0)) {
       issues.push_back(f + ".surface.radius = " + format_value(w.radius) +
                        " (allowed: 0 for a plane, or finite and > 0)");
     } else if (w.radius == 0) {
@@ -203,6 +161,7 @@ void Model::validate() const {
                        "scaled edges would reach the free species too)");
     }
   }
+  for (const auto& p : checks.list()) issues.push_back(p.message());
   if (issues.empty()) return;
   std::string msg = "invalid ssa model: ";
   for (std::size_t k = 0; k < issues.size(); ++k) msg += (k ? "; " : "") + issues[k];

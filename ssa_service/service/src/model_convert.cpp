@@ -6,28 +6,79 @@
 
 #include "sadr/ssa/ssa_service.hpp"
 #include "sadr/wire/convert.hpp"
+#include "sadr/wire/model_proto.hpp"
 
 namespace sadr::ssa {
 namespace {
 
-std::vector<std::pair<int, int>> stoichiometry(
-    const google::protobuf::RepeatedPtrField<common::v1::StoichiometryEntry>& entries,
-    const std::map<std::string, int, std::less<>>& index, const std::string& where) {
+/// Species names -> indices (what the model's names compile to).
+using SpeciesIndex = std::map<std::string, int, std::less<>>;
+
+std::vector<std::pair<int, int>> stoichiometry(const std::vector<model::StoichiometryEntry>& side,
+                                               const SpeciesIndex& index,
+                                               const std::string& where) {
   std::vector<std::pair<int, int>> out;
-  for (int k = 0; k < entries.size(); ++k) {
-    const auto& e = entries.Get(k);
-    const auto it = index.find(e.species());
+  for (std::size_t k = 0; k < side.size(); ++k) {
+    const auto it = index.find(side[k].species);
     if (it == index.end()) {
       std::string known;
       for (const auto& [name, i] : index) known += (known.empty() ? "" : ", ") + name;
-      throw InvalidArgument(where + "[" + std::to_string(k) + "].species = '" + e.species() +
+      throw InvalidArgument(where + "[" + std::to_string(k) + "].species = '" + side[k].species +
                             "' is not a stochastic species (known: " + known + ")");
     }
-    if (e.count() < 1) {
-      throw InvalidArgument(where + "[" + std::to_string(k) +
-                            "].count = " + std::to_string(e.count()) + " (allowed: >= 1)");
+    out.emplace_back(it->second, static_cast<int>(side[k].count));
+  }
+  return out;
+}
+
+/// A species' wall conditions as reservoirs, Neumann sources and free walls of index `idx`.
+void compile_walls(const model::Species& sp, int idx, const wire::RegionMap& regions,
+                   const std::string& where, Model& m) {
+  for (std::size_t w = 0; w < sp.boundaries.size(); ++w) {
+    const model::SpeciesBoundary& wall = sp.boundaries[w];
+    const std::string here = where + ".walls[" + std::to_string(w) + "]";
+    std::vector<std::uint32_t> voxels;
+    if (!wall.region.empty()) voxels = wire::region_particles(regions, wall.region, here);
+    switch (wall.condition) {
+      case model::BoundaryCondition::kDirichlet:
+        m.reservoirs.push_back(WallReservoir{idx, wall.value, std::move(voxels)});
+        break;
+      case model::BoundaryCondition::kNeumann:
+        if (!wall.region.empty()) {
+          throw InvalidArgument(here + ": a Neumann flux on region '" + wall.region +
+                                "' is not supported by ssa_service (it applies to all walls; "
+                                "use region '')");
+        }
+        m.neumann.push_back(NeumannSource{idx, wall.value});
+        break;
+      case model::BoundaryCondition::kFree:
+        m.free_walls.push_back(FreeWall{idx, std::move(voxels)});
+        break;
+      default:
+        break;  // no-flux
     }
-    out.emplace_back(it->second, static_cast<int>(e.count()));
+  }
+}
+
+/// One reaction by name as the core's indexed reaction: species to indices, regions to voxels.
+Reaction compile_reaction(const model::Reaction& rx, std::size_t r, const SpeciesIndex& index,
+                          const wire::RegionMap& regions, const std::string& here) {
+  Reaction out;
+  out.name = rx.name.empty() ? "reaction " + std::to_string(r) : rx.name;
+  out.reactants = stoichiometry(rx.reactants, index, here + ".reactants");
+  out.products = stoichiometry(rx.products, index, here + ".products");
+  out.rate = rx.rate;
+  out.law = rx.law;
+  out.kinds = rx.kinds;
+  for (const auto& name : rx.regions) {
+    const auto& v = wire::region_particles(regions, name, here + ".regions");
+    out.voxels.insert(out.voxels.end(), v.begin(), v.end());
+  }
+  std::sort(out.voxels.begin(), out.voxels.end());  // regions may overlap
+  out.voxels.erase(std::unique(out.voxels.begin(), out.voxels.end()), out.voxels.end());
+  if (!rx.boundary_particles.empty()) {
+    out.voxels = rx.boundary_particles;
+    out.areas = rx.boundary_areas;
   }
   return out;
 }
@@ -41,78 +92,33 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
   m.box = wire::from_proto(in.box(), where + ".box");
   m.smoothing_length = in.smoothing_length();
   if (in.has_regularization()) m.regularization = in.regularization();
-  switch (in.convention()) {
-    case v1::JUMP_CONVENTION_SYMMETRIC:
-      m.convention = JumpConvention::kSymmetric;
-      break;
-    case v1::JUMP_CONVENTION_VOLUME:
-      m.convention = JumpConvention::kVolume;
-      break;
-    default:
-      break;  // keep the core's default
-  }
+  m.convention = wire::from_proto(in.convention(), m.convention);
   const auto regions = wire::regions_from_proto(in.regions(), n_particles, where);
 
-  std::map<std::string, int, std::less<>> index;
+  // The model's own checks first (the same the scene loader ran), then index resolution.
+  model::Problems problems;
+  SpeciesIndex index;
   species_names.clear();
   for (int s = 0; s < in.species_size(); ++s) {
-    const auto& sp = in.species(s);
-    if (!sp.stochastic()) continue;
+    if (!in.species(s).stochastic()) continue;
+    const std::string here = where + ".species[" + std::to_string(s) + "]";
+    const model::Species sp = wire::from_proto(in.species(s), here);
+    problems.set_prefix(here);
+    model::check(sp, problems);
     const int idx = static_cast<int>(m.species.size());
-    index.emplace(sp.name(), idx);
-    species_names.push_back(sp.name());
-    m.species.push_back(Species{sp.name(), sp.diffusivity()});
-    for (int w = 0; w < sp.walls_size(); ++w) {
-      const auto& wall = sp.walls(w);
-      const std::string here =
-          where + ".species[" + std::to_string(s) + "].walls[" + std::to_string(w) + "]";
-      std::vector<std::uint32_t> voxels;
-      if (!wall.region().empty()) voxels = wire::region_particles(regions, wall.region(), here);
-      switch (wall.condition()) {
-        case common::v1::WALL_CONDITION_DIRICHLET:
-          m.reservoirs.push_back(WallReservoir{idx, wall.value(), std::move(voxels)});
-          break;
-        case common::v1::WALL_CONDITION_NEUMANN:
-          if (!wall.region().empty()) {
-            throw InvalidArgument(here + ": a Neumann flux on region '" + wall.region() +
-                                  "' is not supported by ssa_service (it applies to all walls; "
-                                  "use region '')");
-          }
-          m.neumann.push_back(NeumannSource{idx, wall.value()});
-          break;
-        case common::v1::WALL_CONDITION_FREE:
-          m.free_walls.push_back(FreeWall{idx, std::move(voxels)});
-          break;
-        default:
-          break;  // no-flux
-      }
-    }
+    index.emplace(sp.name, idx);
+    species_names.push_back(sp.name);
+    m.species.push_back(Species{sp.name, sp.diffusivity});
+    compile_walls(sp, idx, regions, here, m);
   }
   for (int r = 0; r < in.reactions_size(); ++r) {
-    const auto& rx = in.reactions(r);
     const std::string here = where + ".reactions[" + std::to_string(r) + "]";
-    Reaction out;
-    out.name = rx.name().empty() ? "reaction " + std::to_string(r) : rx.name();
-    out.reactants = stoichiometry(rx.reactants(), index, here + ".reactants");
-    out.products = stoichiometry(rx.products(), index, here + ".products");
-    out.rate = rx.rate();
-    if (rx.has_law()) out.law = wire::from_proto(rx.law(), here + ".law");
-    for (int k = 0; k < rx.kinds_size(); ++k) {
-      if (rx.kinds(k) > 3) {
-        throw InvalidArgument(here + ".kinds[" + std::to_string(k) +
-                              "] = " + std::to_string(rx.kinds(k)) + " (allowed: 0..3)");
-      }
-      out.kinds.push_back(static_cast<ParticleKind>(rx.kinds(k)));
-    }
-    for (const auto& name : rx.regions()) {
-      const auto& v = wire::region_particles(regions, name, here + ".regions");
-      out.voxels.insert(out.voxels.end(), v.begin(), v.end());
-    }
-    std::sort(out.voxels.begin(), out.voxels.end());  // regions may overlap
-    out.voxels.erase(std::unique(out.voxels.begin(), out.voxels.end()), out.voxels.end());
-    wire::boundary_flux_sites(rx, here, out.voxels, out.areas);
-    m.reactions.push_back(std::move(out));
+    const model::Reaction rx = wire::from_proto(in.reactions(r), here);
+    problems.set_prefix(here);
+    model::check(rx, problems);
+    m.reactions.push_back(compile_reaction(rx, static_cast<std::size_t>(r), index, regions, here));
   }
+  problems.throw_if_any();
   for (int w = 0; w < in.wall_planes_size(); ++w) {
     const auto& p = in.wall_planes(w);
     const std::string here = where + ".wall_planes[" + std::to_string(w) + "]";

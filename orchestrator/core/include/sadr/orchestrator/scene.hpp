@@ -21,37 +21,19 @@
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/rate_law.hpp"
+#include "sadr/model/chemistry.hpp"
+#include "sadr/model/fluid.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
 #include "sadr/orchestrator/region.hpp"
 
 namespace sadr::orchestrator {
 
-/// Per-species condition on the non-fluid particles of one region.
-/// The first three match sadr.common.v1.WallCondition.
-enum class BoundaryCondition {
-  kNone,       ///< no-flux: the wall particles take no part for this species
-  kDirichlet,  ///< the particles are reservoirs held at `value` [molecules/length^d]
-  kNeumann,    ///< inward flux density `value` [molecules/(length^(d-1) time)]
-  kFree,       ///< the particles exchange molecules like fluid particles but do not move
-               ///< (needs WALL_CONDITION support on the wire; see docs/scene-format.md)
-  kInflow,     ///< the particles inside the region's box or channel (any kind,
-               ///< re-evaluated as they move) are reset to `value`: stochastic species
-               ///< at the start of every SSA step, deterministic ones after every fluid
-               ///< call (an inlet buffer)
-};
-std::string_view to_string(BoundaryCondition condition);
+using model::BoundaryCondition;
+using model::SpeciesBoundary;
+using model::to_string;
 
-struct SpeciesBoundary {
-  std::string region;  ///< region name (its particles are all non-fluid, except for kInflow)
-  BoundaryCondition condition = BoundaryCondition::kNone;
-  double value = 0.0;  ///< see BoundaryCondition
-};
-
-struct Species {
-  std::string name;          ///< [A-Za-z_][A-Za-z0-9_]*, unique
-  bool stochastic = true;    ///< integer copy numbers (ssa_service) or concentrations (fluid)
-  double diffusivity = 0.0;  ///< kappa >= 0 [length^2/time]
-  std::vector<SpeciesBoundary> boundaries;
+/// A species of the scene: the model's species and its initial values.
+struct Species : model::Species {
   /// Initial value per particle (size N): copy numbers [molecules] (whole
   /// numbers) for a stochastic species, concentrations [molecules/length^d]
   /// for a deterministic one. Dirichlet particles already hold their value.
@@ -69,89 +51,13 @@ struct AssignedSpecies {
   std::string origin;      ///< "file:line", for messages
 };
 
-struct StoichiometryEntry {
-  std::string species;
-  std::uint32_t count = 1;  ///< >= 1
-  bool operator==(const StoichiometryEntry&) const = default;
-};
+using model::Reaction;
+using model::StoichiometryEntry;
 
-/// One irreversible reaction ("A + B -> C"); reversible ones in the file
-/// become two of these ("name" and "name_reverse"). Mass action (`rate`) or
-/// another rate law (`law`, common/rate_law.hpp).
-struct Reaction {
-  std::string name;
-  std::vector<StoichiometryEntry> reactants;  ///< total order <= 2 for mass action
-  std::vector<StoichiometryEntry> products;
-  /// Rate constant in concentration units: order 0 [molecules/(length^d time)],
-  /// order 1 [1/time], order 2 [length^d/(molecules time)], A + A defined by
-  /// dC/dt = -k C^2 (docs/scene-format.md).
-  double rate = 0.0;
-  std::vector<ParticleKind> kinds;   ///< where it may fire; default {fluid}
-  std::vector<std::string> regions;  ///< empty = everywhere
-  bool stochastic = true;            ///< among stochastic species (SSA) or deterministic (fluid)
-  /// A law other than mass action (scene key `law`); `rate` is then unused.
-  /// Assigned species are already substituted into an expression.
-  std::optional<rate_law::Definition> law{};
-  /// Hybrid reaction (docs/method.md section 4c): the species of the other path its
-  /// law reads (a stochastic reaction: deterministic species, frozen over each SSA
-  /// stage; a deterministic one: stochastic species, as X / V from the back-transfer).
-  std::vector<std::string> reads_other{};
-  bool uses_time = false;  ///< the law reads the time t
-  /// Non-empty: a boundary flux (scene `boundary_fluxes`): the law is a flux density j
-  /// [molecules/(length^(d-1) time)] into the fluid, fired only in these fluid particles, each
-  /// with its share of the face's area [length^(d-1)] (boundary_share.hpp); `regions` empty.
-  std::vector<std::uint32_t> boundary_particles{};
-  std::vector<double> boundary_areas{};
-  [[nodiscard]] unsigned order() const;
-};
-
-/// Boussinesq body force g_b beta (C_s - C_ref) along `direction`.
-struct Boussinesq {
-  std::string species;
-  double coefficient = 0.0;                        ///< g_b * beta [length^(d+2)/(time^2 molecules)]
-  double reference = 0.0;                          ///< C_ref [molecules/length^d]
-  std::array<double, 3> direction{0.0, 1.0, 0.0};  ///< unit vector
-};
-
-/// The wall surface of a region of wall particles (fluid.wall_planes; Morris walls): a plane,
-/// or with radius > 0 a circle (2D) / sphere (3D) around `point` with the fluid outside.
-struct WallPlane {
-  std::string region;
-  std::array<double, 3> point{};   ///< a point on the plane, or the centre [length]
-  std::array<double, 3> normal{};  ///< plane: unit normal from the wall into the fluid
-  double radius = 0.0;             ///< > 0: circle / sphere of this radius [length]
-};
-
-/// fluid.open_boundary (sdpd): an open channel along `axis` (docs/scene-format.md). Inlet buffer
-/// [inlet_lo, fluid_lo), fluid [fluid_lo, fluid_hi), outlet buffer [fluid_hi, outlet_hi].
-struct OpenBoundarySettings {
-  int axis = 0;
-  double inlet_lo = 0, fluid_lo = 0, fluid_hi = 0, outlet_hi = 0;  ///< [length]
-  bool parabolic = false;           ///< profile: parabolic (else uniform)
-  double mean_velocity = 0;         ///< mean inflow speed along +axis [length/time]
-  int cross_axis = 1;               ///< parabolic: the axis across the channel
-  double wall_lo = 0, wall_hi = 0;  ///< parabolic: its no-slip planes [length]
-};
-
-struct FluidSettings {
-  std::string backend = "sdpd";   ///< "sdpd", "static" or "tdpd"
-  double smoothing_length = 0.0;  ///< h [length]
-  std::string kernel = "lucy";
-  double reference_density = 1.0;           ///< rho_0 [mass/length^d]
-  double sound_speed = 0.0;                 ///< c_0 [length/time] (sdpd)
-  double shear_viscosity = 0.0;             ///< eta [mass/(length^(d-2) time)]
-  double temperature = 0.0;                 ///< k_B T [energy]; 0 = no thermal noise
-  std::array<double, 3> gravity{};          ///< body force per mass [length/time^2]
-  std::string density_mode = "continuity";  ///< "continuity" or "summation"
-  std::optional<Boussinesq> boussinesq;
-  double max_time_step = 0.0;  ///< upper bound on the fluid sub-step [time]; 0 = none
-  bool force_time_step = false;
-  std::map<std::string, double> parameters;  ///< backend-specific numbers
-  std::map<std::string, std::string> files;  ///< backend-specific files: absolute paths
-  std::string wall_model = "stationary";     ///< one of the backend's wall models
-  std::vector<WallPlane> wall_planes;        ///< wall_model "morris": one per wall region
-  std::optional<OpenBoundarySettings> open_boundary;
-};
+using model::Boussinesq;
+using model::FluidSettings;
+using model::OpenBoundarySettings;
+using model::WallPlane;
 
 enum class Splitting { kLie, kStrang };
 std::string_view to_string(Splitting splitting);
@@ -185,14 +91,8 @@ struct OutputSettings {
   std::vector<ObservableSpec> observables;          ///< named scalars (sweeps)
 };
 
-enum class JumpConvention { kSymmetric, kVolume };
-std::string_view to_string(JumpConvention convention);
-
-struct SsaSettings {
-  JumpConvention convention =
-      JumpConvention::kVolume;   ///< same default as ssa_service (NOTATION.md)
-  double regularization = 0.01;  ///< eps_h in r^2/(r^2 + eps_h h^2), >= 0
-};
+using model::JumpConvention;
+using model::SsaSettings;
 
 /// A loaded, validated scene. Build it with load_scene() or parse_scene().
 struct Scene {

@@ -20,23 +20,17 @@
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/rate_law.hpp"
 #include "sadr/common/wall_surface.hpp"
+#include "sadr/model/chemistry.hpp"
 
 namespace sadr::ssa {
 
-/// How the per-edge weight D_ij of the particle graph is formed (docs/method.md section 4).
-///
-/// kVolume is the DEFAULT: its pure-diffusion equilibrium is a uniform
-/// concentration (d_ij V_i = d_ji V_j), which is what the deterministic SPH
-/// concentration equation (docs/method.md eq (17)) relaxes to on non-uniform particles
-/// (weakly compressible fluid, wall particles of another mass). kSymmetric
-/// (drawert2019 eq 28, SpatialPy) relaxes to equal counts per voxel instead;
-/// both coincide on uniform particles.
-enum class JumpConvention {
-  kSymmetric,  ///< d_ij = kappa D_ij, D_ij = 2 m_i m_j/(m_i+m_j) (rho_i+rho_j)/(rho_i rho_j) reg
-               ///< F_ij
-  kVolume,     ///< d_ij = 2 kappa V_j F_ij reg   (default)
-};
-std::string_view to_string(JumpConvention convention);
+/// How the per-edge weight D_ij of the particle graph is formed (docs/method.md section 4):
+/// kSymmetric d_ij = kappa D_ij, D_ij = 2 m_i m_j/(m_i+m_j) (rho_i+rho_j)/(rho_i rho_j) reg F_ij
+/// (drawert2019 eq 28); kVolume d_ij = 2 kappa V_j F_ij reg (the default; its pure-diffusion
+/// equilibrium is a uniform concentration, what the fluid's SPH concentration equation relaxes
+/// to on non-uniform particles). One type with the scene's (sadr/model/chemistry.hpp).
+using model::JumpConvention;
+using model::to_string;
 
 /// One chemical species.
 struct Species {
