@@ -421,14 +421,14 @@ void HealthCheck::add_frame(const ParticleState& p, std::span<const SpeciesColum
     }
     if (!(c_.spacing > 0)) c_.spacing = estimate_spacing(p, c_.box);
     if (!(c_.support > 0)) c_.support = 2 * c_.spacing;
-    if (!(c_.reference_density > 0)) {
+    if (!(c_.rest_density > 0)) {
       std::vector<double> rho;
       for (std::size_t i = 0; i < p.size(); ++i) {
         if (p.kind(i) == ParticleKind::kFluid) rho.push_back(p.densities[i]);
       }
       if (!rho.empty()) {
         std::nth_element(rho.begin(), rho.begin() + static_cast<long>(rho.size() / 2), rho.end());
-        c_.reference_density = rho[rho.size() / 2];
+        c_.rest_density = rho[rho.size() / 2];
       }
     }
   }
@@ -460,8 +460,8 @@ void HealthCheck::add_frame(const ParticleState& p, std::span<const SpeciesColum
     hole_largest = holes.largest;
     at(hole_worst, static_cast<double>(holes.largest), 0, holes.centre);
   }
-  if (c_.reference_density > 0) {
-    const DensityResult rho = density_deviation(p, c_.reference_density);
+  if (c_.rest_density > 0) {
+    const DensityResult rho = density_deviation(p, c_.rest_density);
     if (rho.fluid) {
       if (!density_worst.found || rho.max > density_worst.value) {
         at(density_worst, rho.max, rho.max_id, rho.max_x);
@@ -569,8 +569,13 @@ std::vector<std::string> HealthCheck::lines() const {
   const int d = c_.box.dimension;
   out.push_back("health (" + std::to_string(frames_) +
                 " frame(s) checked; dx = " + fmt(c_.spacing) + ", h = " + fmt(c_.support) +
-                ", rho0 = " + fmt(c_.reference_density) +
-                (c_.from_scene ? ", from the scene" : ", estimated from the first frame") + "):");
+                (c_.from_scene ? " from the scene" : " estimated from the first frame") +
+                "; rho0 = " + fmt(c_.rest_density) +
+                ", the median fluid density at the first frame" +
+                (c_.reference_density > 0 && c_.reference_density != c_.rest_density
+                     ? " (fluid.reference_density = " + fmt(c_.reference_density) + ")"
+                     : "") +
+                "):");
   std::string tests;
   for (const auto& s : c_.surfaces) tests += (tests.empty() ? "" : ", ") + s.region;
   tests = tests.empty() ? "wall particles closer than dx/2"
@@ -661,6 +666,7 @@ nlohmann::json HealthCheck::report() const {
        {{"spacing", c_.spacing},
         {"support", c_.support},
         {"reference_density", c_.reference_density},
+        {"rest_density", c_.rest_density},
         {"from_scene", c_.from_scene}}},
       {"penetration",
        {{"frames", penetration_frames},

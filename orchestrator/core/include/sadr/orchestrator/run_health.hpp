@@ -51,8 +51,12 @@ struct HealthContext {
   Box box;
   double spacing = 0;            ///< lattice spacing dx [length]; 0 = estimate from a frame
   double support = 0;            ///< kernel support h [length]; 0 = 2 dx
-  double reference_density = 0;  ///< rho0; 0 = the median fluid density of the first frame
-  bool from_scene = false;       ///< the values above came from the run's scene
+  double reference_density = 0;  ///< fluid.reference_density (shown); 0 = unknown
+  /// rho0 of the density check: the median fluid density of the first frame (set by the first
+  /// HealthCheck::add_frame), the density the fluid was set up at; fluid.reference_density may lie
+  /// below it on purpose (a background pressure). 0 = not yet known.
+  double rest_density = 0;
+  bool from_scene = false;  ///< the values above came from the run's scene
   struct Surface {
     std::string region;
     WallSurface surface;
