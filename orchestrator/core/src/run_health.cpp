@@ -616,7 +616,9 @@ std::vector<std::string> HealthCheck::lines() const {
   const auto budgets_now = budgets();
   if (!budgets_now.empty()) {
     out.push_back("  species, first -> last frame (t = " + fmt(budgets_now.front().first_time) +
-                  " -> " + fmt(budgets_now.front().last_time) + "), what can change the total:");
+                  " -> " + fmt(budgets_now.front().last_time) + ")" +
+                  (runs_.size() > 1 ? " of the first run (WARNINGs: of every run)" : "") +
+                  ", what can change the total:");
   }
   for (const SpeciesBudget& b : budgets_now) {
     const double change = b.last - b.first;
