@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // `sadr summary DIR`, also printed at the end of `sadr run` / `sadr resume`
 // (not with -q): what a run did, from its run.json and its first and last CSV
-// frames. For an ensemble directory: the realizations' manifests summed and
+// frames, and the health of the run from its CSV frames (run_health.hpp). For an ensemble
+// directory: the realizations' manifests summed and
 // the species totals of the ensemble mean (ensemble/frame_*.csv).
 #include <algorithm>
 #include <cstdio>
@@ -16,7 +17,11 @@
 #include "commands.hpp"
 #include "csv_cells.hpp"
 #include "sadr/common/log.hpp"
+#include "sadr/orchestrator/run_health.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
+#include "sadr/orchestrator/scene_loader.hpp"
+#include "sadr/orchestrator/scene_override.hpp"
+#include "sadr/orchestrator/sweep_frames.hpp"
 
 namespace sadr::orchestrator {
 namespace fs = std::filesystem;
@@ -169,6 +174,54 @@ void print_stages(std::FILE* out, const Totals& t) {
   }
 }
 
+/// The health section (run_health.hpp): the run's scene read again (scene_path and overrides of
+/// run.json, same hash), else values estimated from the first frame; at most 64 CSV frames in all,
+/// evenly spaced over each run's frames, the first and last of each always.
+void print_health(std::FILE* out, const std::vector<fs::path>& runs, const nlohmann::json& first) {
+  HealthContext context;
+  std::string note;
+  try {
+    const Scene scene =
+        load_scene(first.value("scene_path", ""),
+                   parse_overrides(first.value("overrides", std::vector<std::string>{})));
+    if (scene.source_hash == first.value("scene_hash", "")) {
+      context = health_context(scene);
+    } else {
+      note = "the scene file changed since the run (hash " + scene.source_hash + ")";
+    }
+  } catch (const std::exception& e) {
+    note = std::string("the scene could not be read again: ") + e.what();
+  }
+  if (!context.from_scene) {
+    const nlohmann::json plan = first.value("plan", nlohmann::json::object());
+    for (const auto& name : plan.value("fluid_species", std::vector<std::string>{})) {
+      context.species.push_back({name, false, {}, {}});
+    }
+  }
+  HealthCheck check(std::move(context));
+  const std::size_t per_run = std::max<std::size_t>(2, 64 / std::max<std::size_t>(1, runs.size()));
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    std::vector<fs::path> frames;
+    for (const auto& [index, path] : list_csv_frames(runs[r])) frames.push_back(path);
+    const std::size_t n = frames.size();
+    const std::size_t take = std::min(n, per_run);
+    for (std::size_t k = 0; k < take; ++k) {
+      const std::size_t i = take == 1 ? n - 1 : k * (n - 1) / (take - 1);
+      const CsvFrame f = read_frame_csv(frames[i]);
+      check.add_frame(f.particles, f.species, f.time, frames[i].string(), r);
+    }
+  }
+  if (check.frames() == 0) {
+    std::fprintf(out, "  health: no CSV frames (add csv to output.formats)\n");
+    return;
+  }
+  const auto lines = check.lines();
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    std::fprintf(out, "  %s\n", lines[k].c_str());
+    if (k == 0 && !note.empty()) std::fprintf(out, "    (%s)\n", note.c_str());
+  }
+}
+
 void print_summary(const fs::path& dir, std::FILE* out) {
   const bool is_run = fs::exists(dir / "run.json");
   std::vector<fs::path> realizations;
@@ -217,6 +270,7 @@ void print_summary(const fs::path& dir, std::FILE* out) {
   print_species(out, sorted_files(dir / (is_run ? "frames" : "ensemble"), ".csv"), !is_run,
                 first.value("plan", nlohmann::json::object()));
   print_stages(out, t);
+  print_health(out, is_run ? std::vector<fs::path>{dir} : realizations, first);
   const fs::path run0 = is_run ? dir : realizations.front();
   const auto pvd = sorted_files(run0, ".pvd");
   const std::size_t frames = first.contains("frames") ? first["frames"].size() : 0;
