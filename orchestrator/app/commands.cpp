@@ -67,6 +67,11 @@ void print_plan(const Scene& scene, const Plan& plan, const CliOptions& o) {
   std::fprintf(stderr, "sadr: scene '%s' (%zu particles, %zu species, %zu reactions), t_end = %g\n",
                scene.name.c_str(), scene.particles.size(), scene.species.size(),
                scene.reactions.size(), scene.time.end);
+  try {  // the scene's meaning, whatever file it came from (scene_messages.hpp)
+    std::fprintf(stderr, "sadr: scene meaning %s\n", scene_meaning_hash(scene, plan).c_str());
+  } catch (const std::exception&) {
+    // a scene the services refuse: the run says why, where it builds the same messages
+  }
   std::fprintf(stderr, "sadr: plan (services as %s):\n", std::string(to_string(o.mode)).c_str());
   for (const auto& line : plan.lines()) std::fprintf(stderr, "  - %s\n", line.c_str());
   for (const auto& line : graph.lines) std::fprintf(stderr, "  - %s\n", line.c_str());

@@ -4,6 +4,10 @@
 // the fluid's deterministic species (docs/ssa-core.md "Morris walls").
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "sadr/orchestrator/plan.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
 #include "sadr/orchestrator/scene_messages.hpp"
@@ -37,6 +41,34 @@ TEST(SceneMessages, NoWallPlanesWithoutMorrisOrWithoutADirichletSpecies) {
   const std::string no_flux = test::replace_once(
       kMorris, "    boundaries:\n      - {region: left, condition: dirichlet, value: 4}\n", "");
   EXPECT_EQ(ssa_model(no_flux).wall_planes_size(), 0);
+}
+
+std::string meaning(const std::string& text, const std::string& path = "scene.yaml") {
+  const Scene scene = parse_scene(text, path);
+  return scene_meaning_hash(scene, make_plan(scene));
+}
+
+TEST(SceneMessages, MeaningHashIsTheMeaningNotTheBytes) {
+  const std::string base = meaning(test::kBaseScene);
+  EXPECT_EQ(base.rfind("fnv1a64:", 0), 0u) << base;
+  // Comments, flow vs block style, key order and the file's path do not change the meaning.
+  std::string restyled =
+      "# a comment\n" + test::replace_once(test::kBaseScene,
+                                           "time:\n  coupling_step: 0.1\n  end: 1.0\n",
+                                           "time: {end: 1.0, coupling_step: 0.1}\n");
+  EXPECT_EQ(meaning(restyled, "elsewhere/scene.yaml"), base);  // the name comes from the file name
+  // Every part of the meaning does.
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"rate: 1.0", "rate: 1.5"},
+           {"value: 4}", "value: 5}"},
+           {"diffusivity: 0.2", "diffusivity: 0.3"},
+           {"spacing: 0.25", "spacing: 0.125"},
+           {"  end: 1.0\n", "  end: 2.0\n"},
+           {"  backend: static\n", "  backend: static\n  reference_density: 2.0\n"}}) {
+    EXPECT_NE(meaning(test::replace_once(test::kBaseScene, from, to)), base)
+        << from << " -> " << to;
+  }
+  EXPECT_NE(meaning(test::kBaseScene + "seed: 3\n"), base);
 }
 
 }  // namespace

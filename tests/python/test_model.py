@@ -33,6 +33,12 @@ def static_model(end=2.0):
     return m
 
 
+def meaning_hash(validate_output):
+    """The "scene meaning" hash `sadr validate` prints: the scene's meaning, not its bytes."""
+    found = re.search(r"^sadr: scene meaning (fnv1a64:[0-9a-f]{16})$", validate_output, re.M)
+    return found.group(1) if found else None
+
+
 def plan(text, *paths):
     """`sadr validate` output with the scene's path and the log lines' clock taken out."""
     for p in paths:
@@ -49,6 +55,7 @@ def test_built_in_python_equals_the_example(tmp_path):
     mine = sadr.run_cli(["validate", path]).stderr
     theirs = sadr.run_cli(["validate", EXAMPLES / "static_reaction_diffusion.yaml"]).stderr
     assert plan(mine, path) == plan(theirs, EXAMPLES / "static_reaction_diffusion.yaml")
+    assert meaning_hash(mine) is not None and meaning_hash(mine) == meaning_hash(theirs)
     assert "sadr: scene 'static_reaction_diffusion' (400 particles, 2 species, 4 reactions)" in mine
 
 
@@ -344,3 +351,5 @@ def test_tutorial_scene_built_in_python_equals_its_yaml(tmp_path, page, build):
     m.save(tmp_path / "python.yaml")
     said = [sadr.run_cli(["validate", n], cwd=tmp_path).stderr.replace(n, "S") for n in ("yaml.yaml", "python.yaml")]
     assert said[0] == said[1]
+    hashes = [meaning_hash(text) for text in said]
+    assert hashes[0] is not None and hashes[0] == hashes[1]

@@ -6,6 +6,10 @@
 #include <limits>
 #include <set>
 
+#include <google/protobuf/io/coded_stream.h>
+#include <google/protobuf/io/zero_copy_stream_impl_lite.h>
+
+#include "sadr/orchestrator/hash.hpp"
 #include "sadr/wire/convert.hpp"
 #include "sadr/wire/model_proto.hpp"
 
@@ -172,6 +176,57 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
   add_regions(scene, regions_used, m->mutable_regions());
   wire::to_proto(particles, *init.mutable_particles(), /*with_velocities=*/false);
   return init;
+}
+
+namespace {
+
+std::string deterministic_bytes(const google::protobuf::MessageLite& m) {
+  std::string out;
+  {
+    google::protobuf::io::StringOutputStream stream(&out);
+    google::protobuf::io::CodedOutputStream coded(&stream);
+    coded.SetSerializationDeterministic(true);
+    m.SerializeToCodedStream(&coded);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string scene_meaning_hash(const Scene& scene, const Plan& plan) {
+  // Where a law was written ("file:line", for messages) is not its meaning; a backend file is
+  // its bytes, not its path.
+  fluid::v1::InitRequest fluid = make_fluid_init(scene, plan, scene.seed);
+  ssa::v1::InitRequest ssa = make_ssa_init(scene, plan, scene.seed, scene.particles);
+  for (auto* reactions :
+       {fluid.mutable_model()->mutable_reactions(), ssa.mutable_model()->mutable_reactions()}) {
+    for (auto& r : *reactions) {
+      if (r.has_law()) r.mutable_law()->clear_origin();
+    }
+  }
+  for (auto& [key, path] : *fluid.mutable_model()->mutable_files()) path = file_hash(path);
+  std::string bytes = deterministic_bytes(fluid) + deterministic_bytes(ssa);
+  // The rest of the meaning as text (appends only: GCC 12 misreports chains of operator+).
+  std::string text;
+  auto add = [&text](std::initializer_list<std::string_view> parts) {
+    for (const auto p : parts) text.append(p);
+    text.push_back('\n');
+  };
+  add({"name=", scene.name});
+  for (const auto& a : scene.assigned) add({"assigned ", a.name, "=", a.expanded});
+  for (const auto& s : scene.species) add({"species ", s.name});  // the file's order
+  add({"time ", format_value(scene.time.coupling_step), " ", format_value(scene.time.end), " ",
+       to_string(scene.time.splitting)});
+  const OutputSettings& o = scene.output;
+  for (double t : o.times) add({"output ", format_value(t)});
+  for (auto f : o.formats) add({"format ", to_string(f)});
+  for (const auto& s : o.species) add({"written ", s});
+  add({"checkpoint_every ", format_value(o.checkpoint_every), " vtk_encoding ",
+       std::to_string(static_cast<int>(o.vtk_encoding))});
+  for (const auto& ob : o.observables) {
+    add({"observable ", ob.name, " ", ob.species, " ", ob.region, ob.mean ? " mean" : " sum"});
+  }
+  return content_hash(bytes + text);
 }
 
 }  // namespace sadr::orchestrator

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "sadr/fluid/v1/fluid_service.pb.h"
 #include "sadr/orchestrator/plan.hpp"
@@ -21,5 +22,12 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
 /// @param particles the particle state the first graph is built from
 ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::uint64_t seed,
                                    const ParticleState& particles);
+
+/// The scene's meaning as one hash ("fnv1a64:<16 hex>"): both services' Init messages
+/// (particles, species, reactions, boundaries, fluid and SSA settings, seed; deterministic
+/// serialisation), the assigned species, the time stepping, the output schedule and the name.
+/// Two files that load to the same scene have the same hash whatever their layout, comments,
+/// key order or path (a scene built in Python equals its YAML); source_hash is the bytes'.
+std::string scene_meaning_hash(const Scene& scene, const Plan& plan);
 
 }  // namespace sadr::orchestrator
