@@ -25,12 +25,9 @@
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/orchestrator/output_settings.hpp"
 
 namespace sadr::orchestrator {
-
-/// How .vtu/.vtp frames store their arrays: raw binary appended data (as ParaView
-/// writes by default: compact and fast) or ASCII text (readable by eye and by scripts).
-enum class VtkEncoding { kBinary, kAscii };
 
 /// One named per-particle array (N values).
 struct SpeciesColumn {

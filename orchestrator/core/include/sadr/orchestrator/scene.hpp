@@ -23,7 +23,7 @@
 #include "sadr/common/rate_law.hpp"
 #include "sadr/model/chemistry.hpp"
 #include "sadr/model/fluid.hpp"
-#include "sadr/orchestrator/frame_writers.hpp"
+#include "sadr/orchestrator/output_settings.hpp"
 #include "sadr/orchestrator/region.hpp"
 
 namespace sadr::orchestrator {
@@ -66,29 +66,6 @@ struct TimeSettings {
   double coupling_step = 0.0;  ///< tau > 0 [time]
   double end = 0.0;            ///< end time >= 0 [time]; the run starts at 0
   Splitting splitting = Splitting::kLie;
-};
-
-enum class OutputFormat { kVtu, kVtp, kCsv };
-std::string_view to_string(OutputFormat format);
-
-/// A scalar the scene names for the sweep's observables.csv (output.observables):
-/// per frame, the sum (`mean` false) or the mean over the particles of `region`
-/// (at that frame's positions) of the species column `species`.
-struct ObservableSpec {
-  std::string name;
-  std::string species;
-  std::string region = "all";
-  bool mean = false;
-};
-
-struct OutputSettings {
-  std::string directory;      ///< "" = chosen by the CLI
-  std::vector<double> times;  ///< sorted, unique, in [0, end], always ends with `end` [time]
-  std::vector<OutputFormat> formats{OutputFormat::kVtu, OutputFormat::kCsv};
-  std::vector<std::string> species;  ///< species written per frame (default all)
-  double checkpoint_every = 0.0;     ///< simulated time between checkpoints; 0 = only on signal
-  VtkEncoding vtk_encoding = VtkEncoding::kBinary;  ///< .vtu/.vtp array storage
-  std::vector<ObservableSpec> observables;          ///< named scalars (sweeps)
 };
 
 using model::JumpConvention;
