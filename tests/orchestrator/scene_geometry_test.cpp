@@ -143,6 +143,15 @@ TEST(SceneGeometry, WithoutAFluidBodyTheBoxIsFluid) {
   EXPECT_NEAR(fluid_mass(s), 2.0 * area, 1e-9);
 }
 
+TEST(SceneGeometry, NoExactVolumeForASolidCutByTheBox) {
+  // The cell crosses the periodic face x = 0, where shapes are not wrapped: the part outside
+  // the box is not in the domain, so the ellipse's area is not subtracted as a whole.
+  const Scene s =
+      parse_scene(replace_once(kChannel, "center: [0.7, 0.5]", "center: [0.1, 0.5]"), "scene.yaml");
+  EXPECT_FALSE(s.geometry->exact_fluid_volume);
+  EXPECT_NEAR(fluid_mass(s), 2.0 * s.geometry->lattice_fluid_volume, 1e-9);
+}
+
 TEST(SceneGeometry, NestedCsgAndRegionBodies) {
   std::string text = replace_once(
       kChannel, "      shape: {type: ellipse, center: [0.7, 0.5], radii: [0.2, 0.15]}\n",

@@ -464,14 +464,15 @@ std::optional<double> exact_fluid_volume(const g::FluidDomain& dom, const ShapeR
   } else {
     const auto e = body->shape->exact_volume();
     const g::Aabb bb = body->shape->bounds();
-    const double tol = 1e-9 * g::norm(bx.extent());
+    const double btol = 1e-9 * g::norm(bx.extent());
     bool inside = e.has_value();
     for (int k = 0; k < d && inside; ++k) {
-      inside = bb.lo[k] >= bx.lo[k] - tol && bb.hi[k] <= bx.hi[k] + tol;
+      inside = bb.lo[k] >= bx.lo[k] - btol && bb.hi[k] <= bx.hi[k] + btol;
     }
     if (!inside) return std::nullopt;
     v = *e;
   }
+  const double tol = 1e-9 * g::norm(bx.extent());
   std::vector<g::Aabb> seen;
   for (const auto& s : dom.solids) {
     const auto e = s.shape->exact_volume();
@@ -485,7 +486,8 @@ std::optional<double> exact_fluid_volume(const g::FluidDomain& dom, const ShapeR
     for (int c = 0; c < (d == 3 ? 8 : 4); ++c) {
       const g::Vec3 p{(c & 1) ? sb.hi.x : sb.lo.x, (c & 2) ? sb.hi.y : sb.lo.y,
                       d == 3 ? ((c & 4) ? sb.hi.z : sb.lo.z) : 0.0};
-      if (dom.body ? !(dom.body->signed_distance(p) < 0) : !bx.contains(p)) return std::nullopt;
+      if (!bx.inflated(tol).contains(p)) return std::nullopt;  // cut by the box
+      if (dom.body && !(dom.body->signed_distance(p) < 0)) return std::nullopt;
     }
     v -= *e;
   }
