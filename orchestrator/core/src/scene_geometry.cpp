@@ -801,6 +801,21 @@ void read_geometry(SceneContext& ctx, const Field& root) {
                 "; allowed: bodies that leave room for fluid, or a finer spacing");
     return;
   }
+  for (const auto& b : bodies) {  // a solid the lattice misses would let the fluid through it
+    if (b.role != "solid") continue;
+    bool has_walls = false;
+    for (std::size_t i = 0; i < p.size() && !has_walls; ++i) {
+      has_walls = p.kind[i] == g::Kind::kWall && p.surface_id[i] == b.surface_id;
+    }
+    if (!has_walls) {
+      r.error(b.shape_field, "solid '" + b.name + "' holds no wall particle at spacing " +
+                                 format_number(*dx) +
+                                 ": it is thinner than the lattice resolves (or lies inside "
+                                 "another solid), and the fluid would flow through it; allowed: "
+                                 "a solid at least a few spacings thick, or a finer spacing");
+    }
+  }
+  if (r.diag().size() != errors_before) return;
   auto report = std::make_shared<GeometryReport>();
   report->lattice = lattice_name;
   report->spacing = *dx;
