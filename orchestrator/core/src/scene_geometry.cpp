@@ -728,6 +728,11 @@ void read_geometry(SceneContext& ctx, const Field& root) {
         }
       }
     }
+    if (!b.shape.shape && r.diag().size() == errors_before) {  // every failure says why; in case
+      r.error(b.shape_field,
+              "the shape could not be made; required: a shape, e.g. {type: disk, "
+              "center: [0.5, 0.5], radius: 0.1}");
+    }
     b.surface_id = b.role == "region" ? -1 : static_cast<int>(i) + 1;
     bodies.push_back(std::move(b));
   }
