@@ -1,8 +1,5 @@
 // SPDX-License-Identifier: MIT
-// read_mesh through the gmsh API (libgmsh 4.8). gmsh is linked privately: only this file
-// includes it.
-#include <gmsh.h>
-
+// read_mesh through the gmsh API (libgmsh 4.8), loaded at the first read (gmsh_dl.hpp).
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -10,10 +7,12 @@
 #include <mutex>
 #include <unordered_map>
 
+#include "gmsh_dl.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/geometry/mesh_io.hpp"
 
 namespace sadr::geometry {
+namespace gmsh = gmsh_dl;
 namespace {
 
 std::mutex& gmsh_mutex() {

@@ -73,6 +73,8 @@ struct CliOptions {
 };
 
 int cmd_validate(const CliOptions& options);
+/// `sadr geometry SCENE -o DIR`: the particles of a `geometry` section (geometry_command.cpp).
+int cmd_geometry(const CliOptions& options);
 /// `sadr keygen FILE` writes a CURVE key pair (FILE, 0600) and FILE.pub;
 /// `--show` prints the public key of FILE (keys_command.cpp).
 int cmd_keygen(const std::string& file, bool show);

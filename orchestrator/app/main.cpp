@@ -240,6 +240,15 @@ int main(int argc, char** argv) {
   graph->add_option("-o,--output", o.output, "write to FILE instead of stdout");
   add_set_option(graph);
 
+  auto* geometry = app.add_subcommand(
+      "geometry",
+      "write the particles a scene's `geometry` section makes (DIR/particles.csv and .vtu: kind, "
+      "surface, volume, density error, regions) and print counts, volumes, density error and "
+      "the smallest feature");
+  geometry->add_option("scene", o.scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
+  geometry->add_option("-o,--output", o.output, "output directory (default: ./geometry)");
+  add_set_option(geometry);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -262,6 +271,7 @@ int main(int argc, char** argv) {
   try {
     if (*backends) return cmd_backends(markdown);
     if (*graph) return cmd_graph(o, graph_format);
+    if (*geometry) return cmd_geometry(o);
     if (*keygen) return cmd_keygen(key_file, show_key);
     if (*run || *resume) use_remote_keys(o);
     if (*validate) return cmd_validate(o);

@@ -443,8 +443,8 @@ class Ssa(_Part):
     extra: dict = field(default_factory=dict)
 
 
-_TOP = ("name", "description", "dimension", "box", "regions", "particles", "fluid", "species",
-        "parameters", "reactions", "boundary_fluxes", "time", "output", "ssa", "seed")
+_TOP = ("name", "description", "dimension", "box", "regions", "particles", "geometry", "fluid",
+        "species", "parameters", "reactions", "boundary_fluxes", "time", "output", "ssa", "seed")
 _TOP_PARTS: dict[str, Any] = {"box": Domain, "regions": [Region], "particles": Particles,
                               "fluid": Fluid, "species": [Species], "reactions": [Reaction],
                               "boundary_fluxes": [BoundaryFlux], "time": Time, "output": Output,
@@ -454,7 +454,8 @@ _TOP_PARTS: dict[str, Any] = {"box": Domain, "regions": [Region], "particles": P
 class Model:
     """A scene built in Python (see the module doc). Attributes hold the parts
     (None: not written, the product's default): ``name``, ``description``,
-    ``dimension``, ``box`` (Domain), ``regions``, ``particles``, ``fluid``,
+    ``dimension``, ``box`` (Domain), ``regions``, ``particles``, ``geometry``
+    (a plain mapping, passed on as written: mesh paths are not re-based), ``fluid``,
     ``species``, ``parameters`` (dict), ``reactions``, ``boundary_fluxes``,
     ``time``, ``output``, ``ssa``, ``seed``, and ``extra`` (unknown top-level
     keys, passed on to the CLI)."""
@@ -467,6 +468,7 @@ class Model:
         self.box: Domain | None = None
         self.regions: list[Region] = []
         self.particles: Particles | None = None
+        self.geometry: dict | None = None
         self.fluid: Fluid | None = None
         self.species: list[Species] = []
         self.parameters: dict[str, Number] = {}

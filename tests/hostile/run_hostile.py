@@ -12,6 +12,8 @@ File format (one block per case; `#` starts a comment line):
     scene: BASE            the template written as {scene}
     replace: OLD => NEW    text substitution in the scene ({repeat:X:N} = X N times)
     file: PATH             create a regular file (relative to the case directory)
+    write: PATH => TEXT    create PATH holding TEXT (\\n = newline; {repeat:X:N} as above)
+    mkdir: PATH            create a directory (relative to the case directory)
     env: K=V               environment for every sadr call of the case
     before: ARGS           a sadr call that must exit 0 first
     edit: FILE KEY=JSON    set a key (a.b.0.c for nested) in a JSON file
@@ -69,7 +71,7 @@ def set_json(path, key, value):
 
 def run_case(bindir, bases, name, lines):
     spec = {"replace": [], "message": [], "absent-text": [], "absent": [], "before": [],
-            "edit": [], "env": [], "file": [], "file-has": []}
+            "edit": [], "env": [], "file": [], "file-has": [], "write": [], "mkdir": []}
     for line in lines:
         key, _, value = line.partition(":")
         key, value = key.strip(), value.strip()
@@ -90,6 +92,12 @@ def run_case(bindir, bases, name, lines):
         for fpath in spec["file"]:
             with open(os.path.join(d, fpath), "w") as f:
                 f.write("not a directory\n")
+        for m in spec["mkdir"]:
+            os.makedirs(os.path.join(d, m), exist_ok=True)
+        for w in spec["write"]:
+            fpath, _, content = w.partition(" => ")
+            with open(os.path.join(d, fpath), "w") as f:
+                f.write(expand(content).replace("\\n", "\n"))
         env = dict(os.environ)
         for e in spec["env"]:
             k, _, v = e.partition("=")

@@ -340,7 +340,9 @@ void read_particles(SceneContext& ctx, const Field& root) {
   Scene& s = ctx.scene;
   const Field particles = YamlReader::child(root, "particles");
   if (!YamlReader::present(particles)) {
-    r.error(particles, "missing; required: a map with 'spacing' (lattice) or 'file' (CSV)");
+    r.error(particles,
+            "missing; required: a map with 'spacing' (lattice) or 'file' (CSV), or instead a "
+            "top-level 'geometry' section (particles from shapes and meshes)");
     return;
   }
   if (!r.expect_map(particles, kParticleKeys)) return;

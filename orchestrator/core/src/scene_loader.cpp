@@ -74,10 +74,10 @@ std::string scene_name_from_file(const std::filesystem::path& source) {
 
 namespace {
 
-constexpr std::array<std::string_view, 15> kTopKeys{
+constexpr std::array<std::string_view, 16> kTopKeys{
     "name",   "description", "dimension", "box",       "regions",         "particles",
     "fluid",  "parameters",  "species",   "reactions", "boundary_fluxes", "time",
-    "output", "seed",        "ssa"};
+    "output", "seed",        "ssa",       "geometry"};
 
 void read_box(SceneContext& ctx, const Field& root) {
   YamlReader& r = ctx.reader;
@@ -234,7 +234,11 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   read_box(ctx, root);
   read_fluid(ctx, root);
   read_regions(ctx, root);
-  read_particles(ctx, root);
+  if (YamlReader::present(YamlReader::child(root, "geometry"))) {
+    read_geometry(ctx, root);
+  } else {
+    read_particles(ctx, root);
+  }
   check_open_boundary(ctx);
   check_wall_planes(ctx, root);
   read_parameters(ctx, root);

@@ -53,6 +53,8 @@ inline constexpr double kMaxExactCount = 9007199254740992.0;
 
 void read_regions(SceneContext& ctx, const Field& root);
 void read_particles(SceneContext& ctx, const Field& root);
+/// Top-level "geometry" (scene_geometry.cpp), instead of read_particles: particles from bodies.
+void read_geometry(SceneContext& ctx, const Field& root);
 void read_fluid(SceneContext& ctx, const Field& root);
 /// fluid.open_boundary against h and the particles (after read_particles).
 void check_open_boundary(SceneContext& ctx);

@@ -14,7 +14,9 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,6 +73,45 @@ struct TimeSettings {
 using model::JumpConvention;
 using model::SsaSettings;
 
+/// What the scene's `geometry` section made (docs/scene-format.md, "geometry"): per particle the
+/// surface it belongs to, and the figures `sadr geometry` prints. Regions the section defines are
+/// ordinary entries of Scene::regions (shape `ids`, membership resolved).
+struct GeometryBody {
+  std::string name;
+  std::string role;                      ///< "fluid", "solid" or "region"
+  int surface_id = -1;                   ///< fluid and solid bodies: the id their walls carry
+  std::string origin;                    ///< "file:line" of the body
+  std::optional<double> exact_volume{};  ///< of the shape (area in 2D), where a formula exists
+};
+
+struct GeometryReport {
+  std::string lattice;      ///< "cubic" or "hexagonal"
+  double spacing = 0.0;     ///< dx [length]
+  double wall_depth = 0.0;  ///< wall layer depth behind each surface [length]
+  std::vector<GeometryBody> bodies;
+  /// Per particle: the surface id (GeometryBody::surface_id) behind which a wall particle sits,
+  /// or the nearest one within wall_depth + spacing of a fluid particle; -1 if none.
+  std::vector<int> surface_id;
+  /// Per particle: depth behind the surface (walls) or distance to it (fluid), +inf if none.
+  std::vector<double> surface_distance;
+  /// Per particle: n_i / n_ref - 1 after relaxation (Wendland C2 number density against the
+  /// ideal lattice's); empty when the section does not relax.
+  std::vector<double> density_error;
+  bool relaxed = false;
+  int relax_iterations = 0;
+  double max_error_before = 0.0, rms_error_before = 0.0;  ///< over fluid particles
+  double max_error = 0.0, rms_error = 0.0;
+  double fluid_volume = 0.0;                 ///< the fluid particles' volumes summed [length^d]
+  double lattice_fluid_volume = 0.0;         ///< N_fluid dx^d [length^d]
+  std::optional<double> exact_fluid_volume;  ///< where the shapes give it
+  /// Thinnest feature found (fluid gap or solid, measured along surface normals) [length]:
+  /// +inf when none is thinner than `feature_search` [length].
+  double smallest_feature = std::numeric_limits<double>::infinity();
+  std::string smallest_feature_where;  ///< "body 'x' near (x, y, z)"
+  double feature_search = 0.0;
+  std::vector<std::string> notes;  ///< what was handled on the way (flipped mesh normals)
+};
+
 /// A loaded, validated scene. Build it with load_scene() or parse_scene().
 struct Scene {
   std::string name;
@@ -99,6 +140,8 @@ struct Scene {
   /// in file order): a term that selects no particle, molecules that never reach the fluid.
   /// Not part of the scene's meaning (nor of its hash); `sadr validate --strict` refuses them.
   std::vector<std::string> warnings;
+  /// Set when the particles came from the `geometry` section (shared: scenes are copied).
+  std::shared_ptr<const GeometryReport> geometry;
 
   [[nodiscard]] const Species* find_species(std::string_view name) const;
   [[nodiscard]] const AssignedSpecies* find_assigned(std::string_view name) const;
