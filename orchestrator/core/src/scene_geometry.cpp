@@ -912,17 +912,8 @@ void read_geometry(SceneContext& ctx, const Field& root) {
     if (p.kind[i] == g::Kind::kFluid) report->fluid_volume += p.volume[i];
   }
   // Regions: the scene's own, then each body's and its layers.
-  for (const auto& [index, field] : ctx.id_regions) {
-    const Region& rg = s.regions[index];
-    if (!rg.ids.empty() && rg.ids.back() >= n) {
-      r.error(field, "particle id " + std::to_string(rg.ids.back()) + " of region '" + rg.name +
-                         "' does not exist; allowed: ids 0 to " + std::to_string(n - 1) + " (" +
-                         std::to_string(n) + " particles)");
-    }
-  }
+  resolve_regions(ctx, ps);
   const double tol = ctx.tolerance();
-  resolve_membership(ctx.all_region, ps, tol);
-  for (auto& rg : s.regions) resolve_membership(rg, ps, tol);
   for (const auto& b : bodies) {
     GeometryBody info;
     info.name = b.name;

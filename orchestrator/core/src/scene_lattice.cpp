@@ -385,18 +385,23 @@ void read_particles(SceneContext& ctx, const Field& root) {
   }
   s.particles.ids.resize(n);
   for (std::size_t i = 0; i < n; ++i) s.particles.ids[i] = i;
+  resolve_regions(ctx, s.particles);
+  ctx.particles_ok = true;
+}
+
+void resolve_regions(SceneContext& ctx, const ParticleState& particles) {
+  const std::size_t n = particles.size();
   for (const auto& [index, field] : ctx.id_regions) {
-    const Region& rg = s.regions[index];
+    const Region& rg = ctx.scene.regions[index];
     if (!rg.ids.empty() && rg.ids.back() >= n) {
-      r.error(field, "particle id " + std::to_string(rg.ids.back()) + " of region '" + rg.name +
-                         "' does not exist; allowed: ids 0 to " + std::to_string(n - 1) + " (" +
-                         std::to_string(n) + " particles)");
+      ctx.reader.error(field, "particle id " + std::to_string(rg.ids.back()) + " of region '" +
+                                  rg.name + "' does not exist; allowed: ids 0 to " +
+                                  std::to_string(n - 1) + " (" + std::to_string(n) + " particles)");
     }
   }
   const double tol = ctx.tolerance();
-  resolve_membership(ctx.all_region, s.particles, tol);
-  for (auto& rg : s.regions) resolve_membership(rg, s.particles, tol);
-  ctx.particles_ok = true;
+  resolve_membership(ctx.all_region, particles, tol);
+  for (auto& rg : ctx.scene.regions) resolve_membership(rg, particles, tol);
 }
 
 }  // namespace sadr::orchestrator::detail

@@ -65,6 +65,9 @@ void read_reactions(SceneContext& ctx, const Field& root);
 /// Top-level "boundary_fluxes" (scene_fluxes.cpp), after read_reactions: each one a reaction
 /// with a law and its boundary particles and areas.
 void read_boundary_fluxes(SceneContext& ctx, const Field& root);
+/// After the particles are made: refuses id-listed regions beyond them and resolves every
+/// region's membership (scene_lattice.cpp; the lattice, a particle file and geometry).
+void resolve_regions(SceneContext& ctx, const ParticleState& particles);
 /// Checks the species of a reaction (declared, one path); returns whether they are
 /// stochastic (nullopt if unknown or mixed; reported at `where`).
 std::optional<bool> check_reaction_species(SceneContext& ctx, const Field& where,
