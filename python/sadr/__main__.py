@@ -99,7 +99,8 @@ def plot_geometry_command(args: argparse.Namespace) -> int:
         elif source.is_file():
             with tempfile.TemporaryDirectory(prefix="sadr-geometry-") as tmp:
                 proc = run_cli(["geometry", source, "--output", tmp])
-                sys.stdout.write(proc.stdout.replace(str(Path(tmp)), "(temporary folder)"))
+                sys.stdout.writelines(ln for ln in proc.stdout.splitlines(True)
+                                      if not ln.startswith("wrote "))  # the folder is temporary
                 particles = read_particles(tmp)
             out = args.output or Path(f"{source.stem}-geometry.png")
         else:

@@ -228,15 +228,16 @@ plot_overview = overview
 def geometry_labels(particles: pd.DataFrame, color: str = "kind") -> np.ndarray:
     """The category each particle of `sadr geometry`'s table is drawn in:
     ``kind`` (fluid, wall, ...), ``regions`` (the smallest region holding it,
-    so a membrane shows over its cell; ``all`` left out) or a region's name
-    (that region against the rest)."""
+    so a membrane shows over its cell; ``all`` left out; in none: "KIND, no
+    region") or a region's name (that region against the rest)."""
     n = len(particles)
+    kinds = np.array([KIND_NAMES[k] if k < len(KIND_NAMES) else str(k)
+                      for k in particles["kind"].to_numpy().astype(int)], dtype=object)
     if color == "kind":
-        return np.array([KIND_NAMES[k] if k < len(KIND_NAMES) else str(k)
-                         for k in particles["kind"].to_numpy().astype(int)], dtype=object)
+        return kinds
     columns = [c for c in particles.columns if c.startswith("region_") and c != "region_all"]
     if color == "regions":
-        labels = np.full(n, "(no region)", dtype=object)
+        labels = np.array([f"{k}, no region" for k in kinds], dtype=object)
         size = np.full(n, np.inf)
         for c in columns:
             member = particles[c].to_numpy() == 1
@@ -298,8 +299,8 @@ def plot_geometry(particles, color: str = "kind", *, size: float | None = None,
         ax.set_aspect("equal")
         ax.set_xlabel("xyz"[plane[0]])
         ax.set_ylabel("xyz"[plane[1]])
-        ax.set_title(f"slice {where}" if where else f"{len(pos)} particles by {color}")
-        ax.legend(loc="upper right", fontsize="small", markerscale=2)
-    if title is not None or three_d:
+        ax.set_title(f"slice {where}" if where else title or f"{len(pos)} particles by {color}")
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, fontsize="small", markerscale=2)
+    if three_d:
         fig.suptitle(title if title is not None else f"{len(pos)} particles by {color}")
     return fig
