@@ -2,8 +2,8 @@
 """Build a scene in Python: ``sadr.Model``.
 
 A Model holds every part of a scene file (docs/scene-format.md) as Python
-objects: the box, regions, particles (a lattice with fill rules, or a
-particle file), the fluid backend and its settings, species with initial
+objects: the box, regions, particles (a lattice with fill rules, a
+particle file, or the ``geometry`` section: sadr.geometry), the fluid backend and its settings, species with initial
 values and boundary conditions, parameters, reactions with their rate laws,
 boundary fluxes, time, output, SSA options and the seed. It writes the YAML
 that `sadr` reads, and validates and runs it through the `sadr` CLI::
