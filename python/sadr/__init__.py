@@ -17,11 +17,13 @@ from .cli import (EXIT_CODES, InvalidInput, Interrupted, IoFailure, NumericalFai
                   ServiceFailure, UsageError, find_sadr, run_cli)
 from .frames import (KIND_NAMES, Frame, FrameFormatError, read_csv_frame, read_ensemble_frame,
                      read_frame, read_pvd, read_vtk_arrays, read_vtk_frame)
+from .geometry import Geometry
 from .model import Expression, Hill, Law, MichaelisMenten, Model
 from .regions import Box, Disk, Everything, Kinds, Region
 from .runs import Ensemble, Run, open_output
 from .scene import Scene
 from .series import band, observe
+from .sweep_file import SweepFile
 from .sweeps import Sweep
 
 __version__ = "0.1.0"  # the project's version (CMakeLists.txt; tests/python/test_package.py compares)
@@ -29,8 +31,8 @@ __version__ = "0.1.0"  # the project's version (CMakeLists.txt; tests/python/tes
 open = open_output  # noqa: A001 - sadr.open(path), like xarray.open_dataset
 
 
-_PLOTS = ("plot_overview", "plot_particles", "plot_profile", "plot_series", "plot_sweep", "profile",
-          "sweep_summary")
+_PLOTS = ("plot_geometry", "plot_overview", "plot_particles", "plot_profile", "plot_series", "plot_sweep",
+          "profile", "sweep_summary")
 
 
 def __getattr__(name: str):
@@ -44,11 +46,11 @@ def __getattr__(name: str):
 
 
 __all__ = [
-    "Box", "Disk", "Ensemble", "Everything", "EXIT_CODES", "Expression", "Frame", "FrameFormatError",
+    "Box", "Disk", "Ensemble", "Everything", "EXIT_CODES", "Expression", "Frame", "FrameFormatError", "Geometry",
     "Hill", "InvalidInput", "Interrupted", "IoFailure", "KIND_NAMES", "Kinds", "Law", "MichaelisMenten",
     "Model", "NumericalFailure",
-    "Region", "Run", "SadrError", "Scene", "ServiceFailure", "Sweep", "UsageError", "band", "find_sadr",
-    "observe", "open", "open_output", "plot_overview", "plot_particles", "plot_profile", "plot_series",
+    "Region", "Run", "SadrError", "Scene", "ServiceFailure", "Sweep", "SweepFile", "UsageError", "band", "find_sadr",
+    "observe", "open", "open_output", "plot_geometry", "plot_overview", "plot_particles", "plot_profile", "plot_series",
     "plot_sweep", "profile", "read_csv_frame", "read_ensemble_frame", "read_frame", "read_pvd",
     "read_vtk_arrays", "read_vtk_frame", "run_cli", "sweep_summary",
 ]

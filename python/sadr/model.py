@@ -2,8 +2,8 @@
 """Build a scene in Python: ``sadr.Model``.
 
 A Model holds every part of a scene file (docs/scene-format.md) as Python
-objects: the box, regions, particles (a lattice with fill rules, or a
-particle file), the fluid backend and its settings, species with initial
+objects: the box, regions, particles (a lattice with fill rules, a
+particle file, or the ``geometry`` section: sadr.geometry), the fluid backend and its settings, species with initial
 values and boundary conditions, parameters, reactions with their rate laws,
 boundary fluxes, time, output, SSA options and the seed. It writes the YAML
 that `sadr` reads, and validates and runs it through the `sadr` CLI::
@@ -41,6 +41,9 @@ from pathlib import Path
 from typing import Any, ClassVar, Union
 
 from .cli import InvalidInput, run_cli
+from .geometry import Geometry, GeometryBuild, read_particles
+from .parts import Part as _Part
+from .parts import Written, build as _build, plain as _plain
 from .paths import dump_yaml, get_path, load_yaml, set_path
 from .runs import Ensemble, Run
 
@@ -50,70 +53,9 @@ Value = Union[int, float, str]
 Vector = list
 
 
-class _Part:
-    """A piece of a scene: dataclass fields in the scene's key order, ``None``
-    for a key that is not written, ``extra`` for keys this module does not know."""
-
-    _nested: ClassVar[dict[str, Any]] = {}
-
-    def to_dict(self) -> dict:
-        out: dict = {}
-        for f in dataclasses.fields(self):
-            if f.name == "extra":
-                continue
-            value = getattr(self, f.name)
-            if value is None:
-                continue
-            out[f.name] = _plain(value)
-        out.update(_plain(getattr(self, "extra", {}) or {}))
-        return out
-
-    @classmethod
-    def from_dict(cls, data: dict):
-        if not isinstance(data, dict):
-            raise TypeError(f"{cls.__name__}: expected a mapping, got {data!r}")
-        names = {f.name for f in dataclasses.fields(cls)} - {"extra"}
-        kwargs: dict = {}
-        extra: dict = {}
-        for key, value in data.items():
-            if key in names:
-                kind = cls._nested.get(key)
-                kwargs[key] = _build(kind, value) if kind is not None and value is not None else value
-            else:
-                extra[key] = value
-        obj = cls(**kwargs)
-        obj.extra = extra
-        return obj
-
-
-def _plain(value: Any) -> Any:
-    if isinstance(value, (_Part, Law)):
-        return value.to_dict()
-    if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, Path):
-        return str(value)
-    if hasattr(value, "tolist"):  # numpy scalars and arrays
-        return value.tolist()
-    return value
-
-
-def _build(kind: Any, value: Any) -> Any:
-    """``kind``: a _Part class, [class] for a list of them, or Law for a rate law."""
-    if isinstance(kind, list):
-        if not isinstance(value, list):
-            return value  # the CLI says what is wrong with it
-        return [_build(kind[0], v) for v in value]
-    if kind is Law:
-        return Law.from_dict(value) if isinstance(value, dict) else value
-    return kind.from_dict(value) if isinstance(value, dict) else value
-
-
 # --- rate laws ----------------------------------------------------------------
 
-class Law:
+class Law(Written):
     """A rate law other than mass action (``law:`` of a reaction or a boundary
     flux). Use MichaelisMenten, Hill or Expression; ``Law(type, **keys)`` writes
     any other ``type`` as given."""
@@ -446,7 +388,7 @@ class Ssa(_Part):
 _TOP = ("name", "description", "dimension", "box", "regions", "particles", "geometry", "fluid",
         "species", "parameters", "reactions", "boundary_fluxes", "time", "output", "ssa", "seed")
 _TOP_PARTS: dict[str, Any] = {"box": Domain, "regions": [Region], "particles": Particles,
-                              "fluid": Fluid, "species": [Species], "reactions": [Reaction],
+                              "geometry": Geometry, "fluid": Fluid, "species": [Species], "reactions": [Reaction],
                               "boundary_fluxes": [BoundaryFlux], "time": Time, "output": Output,
                               "ssa": Ssa}
 
@@ -455,7 +397,7 @@ class Model:
     """A scene built in Python (see the module doc). Attributes hold the parts
     (None: not written, the product's default): ``name``, ``description``,
     ``dimension``, ``box`` (Domain), ``regions``, ``particles``, ``geometry``
-    (a plain mapping, passed on as written: mesh paths are not re-based), ``fluid``,
+    (a sadr.geometry.Geometry: particles from shapes, instead of ``particles``), ``fluid``,
     ``species``, ``parameters`` (dict), ``reactions``, ``boundary_fluxes``,
     ``time``, ``output``, ``ssa``, ``seed``, and ``extra`` (unknown top-level
     keys, passed on to the CLI)."""
@@ -468,7 +410,7 @@ class Model:
         self.box: Domain | None = None
         self.regions: list[Region] = []
         self.particles: Particles | None = None
-        self.geometry: dict | None = None
+        self.geometry: Geometry | None = None
         self.fluid: Fluid | None = None
         self.species: list[Species] = []
         self.parameters: dict[str, Number] = {}
@@ -480,8 +422,8 @@ class Model:
         self.seed = seed
         self.extra: dict = {}
         self.base_dir: Path | None = None
-        """Where relative file paths (particles.file, fluid.parameters.field_file)
-        point from: the loaded file's folder; None: the working directory."""
+        """Where relative file paths (particles.file, fluid.parameters.field_file,
+        the files of geometry meshes) point from: the loaded file's folder; None: the working directory."""
 
     def __repr__(self) -> str:
         return (f"sadr.Model({self.name!r}, dimension={self.dimension}, {len(self.species)} species, "
@@ -532,6 +474,24 @@ class Model:
         directory and written relative to the scene file)."""
         self.particles = Particles(file=str(Path(path).resolve()))
         return self.particles
+
+    def set_geometry(self, spacing: Number | Geometry, *, lattice: str | None = None,
+                     density: Number | None = None, wall_depth: Number | None = None,
+                     offset: Vector | None = None, relax: Any = None) -> Geometry:
+        """Particles from shapes (the ``geometry`` section, sadr.geometry) instead
+        of ``particles``: a Geometry, or its settings (add bodies to the result:
+        ``add_fluid``, ``add_solid``, ``add_region``). ``relax``: a
+        sadr.geometry.Relax, or a mapping of its keys."""
+        if isinstance(spacing, Geometry):
+            self.geometry = spacing
+        else:
+            from .geometry import Relax
+
+            if isinstance(relax, dict):
+                relax = Relax.from_dict(relax)
+            self.geometry = Geometry(spacing=spacing, lattice=lattice, density=density,
+                                     wall_depth=wall_depth, offset=offset, relax=relax)
+        return self.geometry
 
     def set_fluid(self, backend: str, *, parameters: dict | None = None, **settings: Any) -> Fluid:
         """The fluid backend (``static``, ``sdpd``, ``tdpd``, ``prescribed``; `sadr
@@ -697,12 +657,8 @@ class Model:
         path.parent.mkdir(parents=True, exist_ok=True)
         data = self._data_for(path)
         path.write_text(dump_yaml(data), encoding="utf-8")
-        for key, value in self._files():  # the model's relative paths now point from path's folder
-            new = get_path(data, key)
-            if key == "particles.file":
-                self.particles.file = new
-            else:
-                self.fluid.parameters["field_file"] = new
+        for key, value, put in self._files():  # the model's relative paths now point from path's folder
+            put(get_path(data, key))
         self.base_dir = path.parent.resolve()
         return path
 
@@ -712,22 +668,28 @@ class Model:
             return p
         return ((self.base_dir or Path.cwd()) / p).resolve()
 
-    def _files(self) -> list[tuple[str, str]]:
-        """(path, value) of the scene's file-valued keys."""
+    def _files(self) -> list[tuple[str, Any, Any]]:
+        """(path, value, setter) of the scene's file-valued keys: the setter puts a
+        new value into the model's part."""
         data = self.to_dict()
         out = []
-        for path in ("particles.file", "fluid.parameters.field_file"):
+        setters = {"particles.file": lambda v: setattr(self.particles, "file", v),
+                   "fluid.parameters.field_file": lambda v: self.fluid.parameters.__setitem__("field_file", v)}
+        for path, put in setters.items():
             try:
                 value = get_path(data, path)
             except KeyError:
                 continue
             if isinstance(value, str):
-                out.append((path, value))
+                out.append((path, value, put))
+        if isinstance(self.geometry, Geometry):
+            for path, mesh in self.geometry.meshes():
+                out.append((path, mesh.file, lambda v, mesh=mesh: setattr(mesh, "file", v)))
         return out
 
     def _data_for(self, target: Path | None) -> dict:
         data = self.to_dict()
-        for path, value in self._files():
+        for path, value, _ in self._files():
             absolute = self._absolute(value)
             if target is None:
                 set_path(data, path, str(absolute))
@@ -758,6 +720,28 @@ class Model:
                 e.scene_yaml = text
                 raise
         return proc.stderr + proc.stdout
+
+    def build_geometry(self, output: str | os.PathLike, *,
+                       overrides: dict | None = None) -> GeometryBuild:
+        """`sadr geometry` on the scene: writes it to ``OUTPUT/<name>.yaml`` (the
+        model is not changed), the particles its ``geometry`` section makes to
+        ``OUTPUT/particles.csv`` and ``particles.vtu``, and returns a
+        sadr.geometry.GeometryBuild (the particles as a pandas DataFrame, the
+        printed summary). A refusal raises sadr.InvalidInput carrying the CLI's
+        message, with the YAML it read as ``scene_yaml``."""
+        from .scene import set_options
+
+        output = Path(output)
+        output.mkdir(parents=True, exist_ok=True)
+        path = output / f"{_file_stem(self.name)}.yaml"
+        text = self.to_yaml(path)
+        path.write_text(text, encoding="utf-8")
+        try:
+            proc = run_cli(["geometry", path, "--output", output] + set_options(overrides))
+        except InvalidInput as e:
+            e.scene_yaml = text
+            raise
+        return GeometryBuild(output, path, read_particles(output), proc.stdout, proc.stderr)
 
     def run(self, output: str | os.PathLike, *, realizations: int | None = None,
             realization: int | None = None, jobs: int | None = None,

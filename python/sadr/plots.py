@@ -223,3 +223,84 @@ def overview(run, species: str | None = None) -> Figure:
 
 
 plot_overview = overview
+
+
+def geometry_labels(particles: pd.DataFrame, color: str = "kind") -> np.ndarray:
+    """The category each particle of `sadr geometry`'s table is drawn in:
+    ``kind`` (fluid, wall, ...), ``regions`` (the smallest region holding it,
+    so a membrane shows over its cell; ``all`` left out; in none: "KIND, no
+    region") or a region's name (that region against the rest)."""
+    n = len(particles)
+    kinds = np.array([KIND_NAMES[k] if k < len(KIND_NAMES) else str(k)
+                      for k in particles["kind"].to_numpy().astype(int)], dtype=object)
+    if color == "kind":
+        return kinds
+    columns = [c for c in particles.columns if c.startswith("region_") and c != "region_all"]
+    if color == "regions":
+        labels = np.array([f"{k}, no region" for k in kinds], dtype=object)
+        size = np.full(n, np.inf)
+        for c in columns:
+            member = particles[c].to_numpy() == 1
+            count = member.sum()
+            pick = member & (count < size)
+            labels[pick] = c[len("region_"):]
+            size[pick] = count
+        return labels
+    column = f"region_{color}"
+    if column not in particles.columns:
+        names = ", ".join(["kind", "regions"] + [c[len("region_"):] for c in columns])
+        raise ValueError(f"color '{color}': allowed: {names}")
+    member = particles[column].to_numpy() == 1
+    return np.where(member, color, "other").astype(object)
+
+
+def plot_geometry(particles, color: str = "kind", *, size: float | None = None,
+                  title: str | None = None) -> Figure:
+    """The particles `sadr geometry` made (a DataFrame of sadr.geometry.read_particles,
+    a sadr.geometry.GeometryBuild, or a folder or particles.csv), one colour per
+    category of ``color`` (geometry_labels: ``kind``, ``regions`` or a region's
+    name). 2D: one scatter; 3D: three slices through the centre of the particles
+    (x-y, x-z, y-z), each the particles within half a spacing of a lattice
+    plane. Returns the Figure."""
+    from .geometry import GeometryBuild, read_particles
+
+    if isinstance(particles, GeometryBuild):
+        particles = particles.particles
+    elif not isinstance(particles, pd.DataFrame):
+        particles = read_particles(particles)
+    labels = geometry_labels(particles, color)
+    pos = particles[["x", "y", "z"]].to_numpy()
+    categories = list(dict.fromkeys(labels))
+    palette = plt.get_cmap("tab10")
+    three_d = len(pos) > 0 and np.ptp(pos[:, 2]) > 0
+    if not three_d:
+        fig, ax = plt.subplots(figsize=(7, 5), layout="constrained")
+        panels = [(ax, (0, 1), np.ones(len(pos), dtype=bool), "")]
+    else:
+        fig, axes = plt.subplots(1, 3, figsize=(15, 5), layout="constrained")
+        if "volume" in particles.columns and len(particles):
+            dx = float(np.median(particles["volume"].to_numpy())) ** (1.0 / 3.0)
+        else:
+            dx = float(np.min(np.diff(np.unique(pos[:, 0])), initial=1.0))
+        panels = []
+        for ax, normal, plane in zip(axes, (2, 1, 0), ((0, 1), (0, 2), (1, 2))):
+            coord = pos[:, normal]
+            centre = 0.5 * (coord.min() + coord.max())
+            at = coord[np.argmin(np.abs(coord - centre))]
+            keep = np.abs(coord - at) < 0.5 * dx
+            panels.append((ax, plane, keep, f"{'xyz'[normal]} = {at:.4g}"))
+    for ax, plane, keep, where in panels:
+        s = size if size is not None else max(2.0, 6000.0 / max(1, keep.sum()))
+        for k, name in enumerate(categories):
+            pick = keep & (labels == name)
+            if pick.any():
+                ax.scatter(pos[pick, plane[0]], pos[pick, plane[1]], s=s, color=palette(k % 10),
+                           linewidths=0, label=f"{name} ({int(pick.sum())})")
+        ax.set_aspect("equal")
+        ax.set_xlabel("xyz"[plane[0]])
+        ax.set_ylabel("xyz"[plane[1]])
+        ax.set_title(f"slice {where}" if where else title or f"{len(pos)} particles by {color}")
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, fontsize="small", markerscale=2)
+    if three_d:
+        fig.suptitle(title if title is not None else f"{len(pos)} particles by {color}")
+    return fig

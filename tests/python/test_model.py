@@ -341,7 +341,67 @@ def reaction_network():
     return m
 
 
-@pytest.mark.parametrize("page,build", [("01-first-scene", first_scene), ("02-reaction-network", reaction_network)])
+def cell_in_channel():
+    """Tutorial 3's scene: the channel and the cell from the geometry section (sadr.geometry)."""
+    from sadr.geometry import Box, Disk
+
+    m = sadr.Model("cell", dimension=2, seed=5, description="a cell with surface receptors in a 2D channel flow")
+    m.set_box([0.0, -0.15], [2.0, 1.15], periodic=[True, False])
+    m.add_region("inlet", "box", lower=[0.0, 0.05], upper=[0.2, 0.95])
+    geo = m.set_geometry(spacing=0.05)
+    geo.add_fluid("channel", Box([-1.0, 0.0], [3.0, 1.0]))
+    geo.add_solid("cell", Disk([0.6, 0.5], 0.12), wall_layer="membrane")
+    m.set_fluid("sdpd", h_over_dx=3.0, reference_density=0.98, sound_speed=5.0, shear_viscosity=0.1,
+                temperature=0.0, gravity=[0.4, 0.0])
+    m.add_species("L", diffusivity=0.002).add_boundary("inlet", "inflow", count=20).add_boundary("membrane", "free")
+    m.add_species("R", diffusivity=0.0).add_initial("membrane", count=50).add_boundary("membrane", "free")
+    m.add_species("RL", diffusivity=0.0).add_boundary("membrane", "free")
+    m.add_reaction("R + L <-> RL", name="binding", rate=0.01, reverse_rate=0.1, kinds=["wall"],
+                   regions=["membrane"])
+    m.set_time(coupling_step=0.02, end=6.0)
+    m.set_output(every=1.0, formats=["vtu", "csv"])
+    return m
+
+
+def disk_scene(name="disk", end=1.0, every=0.5, formats=("csv",), observable=True):
+    """Tutorials 4, 5 and 6: tutorial 1's scene, shorter (4: with an observable)."""
+    m = sadr.Model(name, dimension=2, seed=7)
+    m.set_box([0.0, 0.0], [1.0, 1.0], periodic=[True, True])
+    m.add_region("source", "disk", center=[0.5, 0.5], radius=0.15)
+    m.set_lattice(spacing=0.05, density=1.0)
+    m.set_fluid("static", h_over_dx=2.0)
+    m.add_species("A", stochastic=True, diffusivity=0.01)
+    m.add_reaction("0 -> A", name="make", rate=4000, regions=["source"])
+    m.add_reaction("A -> 0", name="decay", rate=1.0)
+    m.set_time(coupling_step=0.05, end=end)
+    m.set_output(every=every, formats=list(formats))
+    if observable:
+        m.add_observable("A_disk", "A", region="source")
+    return m
+
+
+def decay_sweep():
+    """Tutorial 4's sweep file: three decay rates x 8 realizations of its scene."""
+    sw = sadr.SweepFile(disk_scene(), realizations=8, seed=2024, output="sweeps/decay")
+    sw.add_grid("reactions[decay].rate", [0.5, 1.0, 2.0])
+    sw.executor = sadr.sweep_file.Executor("local", workers=2)
+    return sw
+
+
+TUTORIAL_SCENES = [
+    ("01-first-scene", first_scene), ("02-reaction-network", reaction_network),
+    ("03-cell-in-channel", cell_in_channel), ("04-parameter-sweep", disk_scene),
+    ("05-python-paraview", lambda: disk_scene("first", 2.0, 0.25, ("vtu", "csv"), False)),
+    ("06-cluster", lambda: disk_scene("first", 1.0, 0.5, ("vtu", "csv"), False))]
+
+
+def test_every_tutorial_with_a_scene_is_built_in_python():
+    pages = {p.stem for p in (REPO / "docs" / "tutorials").glob("0*.md")
+             if re.search(r"```yaml\n(?:.*\n)*?dimension:", p.read_text())}
+    assert pages == {page for page, _ in TUTORIAL_SCENES}
+
+
+@pytest.mark.parametrize("page,build", TUTORIAL_SCENES)
 def test_tutorial_scene_built_in_python_equals_its_yaml(tmp_path, page, build):
     text = (REPO / "docs" / "tutorials" / f"{page}.md").read_text()
     block = re.search(r"```yaml\n(.*?)```", text, re.S).group(1)
@@ -353,3 +413,43 @@ def test_tutorial_scene_built_in_python_equals_its_yaml(tmp_path, page, build):
     assert said[0] == said[1]
     hashes = [meaning_hash(text) for text in said]
     assert hashes[0] is not None and hashes[0] == hashes[1]
+
+
+def test_tutorial_sweep_built_in_python_equals_its_yaml(tmp_path):
+    """Tutorial 4's sweep file and its scene built in Python: the same file, and
+    `sadr sweep --dry-run` lists the same points, overrides, seeds and runs."""
+    text = (REPO / "docs" / "tutorials" / "04-parameter-sweep.md").read_text()
+    scene, sweep = re.findall(r"```yaml\n(.*?)```", text, re.S)[:2]
+    (tmp_path / "yaml").mkdir()
+    (tmp_path / "yaml" / "disk.yaml").write_text(scene)
+    (tmp_path / "yaml" / "decay.yaml").write_text(sweep)
+    sw = decay_sweep()
+    path = sw.save(tmp_path / "python" / "decay.yaml", scene_file="disk.yaml")
+    assert load_yaml(path.read_text()) == load_yaml(sweep)
+    assert load_yaml((tmp_path / "python" / "disk.yaml").read_text()) == load_yaml(scene)
+    said = [sadr.SweepFile.load(tmp_path / d / "decay.yaml").dry_run().replace(str(tmp_path / d), "D")
+            for d in ("yaml", "python")]
+    assert said[0] == said[1]
+    assert said[0].count("reactions[decay].rate=") >= 3
+    back = sadr.SweepFile.load(path)
+    assert back.to_dict() == load_yaml(sweep) and back.parameters.grid == {"reactions[decay].rate": [0.5, 1.0, 2.0]}
+
+
+def test_sweep_file_has_the_loaders_keys():
+    src = (REPO / "orchestrator" / "core" / "src" / "sweep_spec.cpp").read_text()
+    arrays = [re.findall(r'"([^"]+)"', m) for m in re.findall(r"kKeys\{([^}]*)\}", src)]
+    from sadr import sweep_file
+
+    expect = [sweep_file.Parameters.keys(), sweep_file.Executor.keys(), sweep_file.SweepFile.keys()]
+    assert sorted(map(sorted, arrays)) == sorted(map(sorted, expect))
+
+
+def test_a_bad_sweep_is_refused_with_the_clis_message(tmp_path):
+    sw = decay_sweep()
+    sw.add_grid("reactions[decay].rat", [1.0])
+    sw.save(tmp_path / "decay.yaml", scene_file="disk.yaml")
+    with pytest.raises(sadr.InvalidInput) as e:
+        sw.dry_run()
+    direct = sadr.run_cli(["sweep", tmp_path / "decay.yaml", "--dry-run"], check=False)
+    assert direct.returncode == 1 and e.value.stderr == direct.stderr
+    assert "rat" in e.value.message
