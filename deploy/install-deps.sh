@@ -20,11 +20,11 @@ PRODUCT=(
   libmuparser-dev                           # expression rate laws (common/rate_law.hpp)
   nlohmann-json3-dev                        # JSON manifests and benchmark output
   python3 python3-numpy python3-pandas python3-matplotlib python3-yaml  # the Python package's reading and plots
+  python3-scipy                             # its confidence bands (Student t), and the validation references
 )
 TESTS=(
   libgtest-dev libgmock-dev                 # tests
   libbenchmark-dev                          # benchmarks (optional: without it they are not built)
-  python3-scipy                             # reference scripts for validation tests
   procps                                    # pgrep, used by the e2e tests to find service processes
   python3-xarray                            # the Python package's xarray views (python/sadr)
   python3-pytest                            # its tests (tests/python, run by ctest)
