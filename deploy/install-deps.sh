@@ -15,6 +15,7 @@ PRODUCT=(
   libeigen3-dev                             # small dense/sparse linear algebra
   libboost-graph-dev                        # graph diagnostics (connected_components), Boost.Math
   libgmsh-dev                               # geometry/: reads .msh v2/v4 with physical groups, and STL (docs/geometry.md)
+  libassimp-dev                             # geometry/: reads .obj surfaces
   libcli11-dev                              # command-line parsing
   libyaml-cpp-dev                           # scene files
   libmuparser-dev                           # expression rate laws (common/rate_law.hpp)

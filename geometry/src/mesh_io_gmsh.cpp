@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "gmsh_dl.hpp"
+#include "mesh_io_parts.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/geometry/mesh_io.hpp"
 
@@ -231,9 +232,9 @@ MeshFile read_mesh(const std::string& path, int dimension) {
                           std::to_string(dimension));
   }
   const std::string ext = lower_extension(path);
-  if (ext != ".msh" && ext != ".stl") {
+  if (ext != ".msh" && ext != ".stl" && ext != ".obj") {
     throw InvalidArgument(path + ": unsupported mesh format '" + ext +
-                          "'; supported: .msh (gmsh v2, v4) and .stl (ASCII, binary)");
+                          "'; supported: .msh (gmsh v2, v4), .stl (ASCII, binary) and .obj");
   }
   std::error_code ec;
   if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
@@ -242,6 +243,7 @@ MeshFile read_mesh(const std::string& path, int dimension) {
   if (!std::ifstream(path, std::ios::binary).good()) {
     throw InvalidArgument(path + ": cannot open the mesh file (missing or unreadable)");
   }
+  if (ext == ".obj") return read_obj(path, dimension);
   std::lock_guard lock(gmsh_mutex());
   GmshSession session;
   try {

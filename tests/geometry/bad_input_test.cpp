@@ -46,7 +46,7 @@ TEST(BadInput, MeshFilesAreRefusedWithFileAndReason) {
   const BadCase cases[] = {
       {"missing.stl", nullptr, 3, nullptr, "cannot open"},
       {"folder.stl", nullptr, 3, nullptr, "not a regular file"},
-      {"shape.obj", "v 0 0 0\n", 3, nullptr, "unsupported mesh format '.obj'"},
+      {"shape.ply", "ply\n", 3, nullptr, "unsupported mesh format '.ply'"},
       {"noext", "solid x\nendsolid x\n", 3, nullptr, "unsupported mesh format"},
       {"empty.stl", "solid x\nendsolid x\n", 3, nullptr, "empty mesh"},
       {"nan.stl",
