@@ -244,6 +244,7 @@ MeshFile read_mesh(const std::string& path, int dimension) {
     throw InvalidArgument(path + ": cannot open the mesh file (missing or unreadable)");
   }
   if (ext == ".obj") return read_obj(path, dimension);
+  if (ext == ".stl") check_stl_vertices(path);
   std::lock_guard lock(gmsh_mutex());
   GmshSession session;
   try {

@@ -11,4 +11,8 @@ namespace sadr::geometry {
 /// A Wavefront .obj file through assimp (mesh_io_obj.cpp); same errors as read_mesh.
 MeshFile read_obj(const std::string& path, int dimension);
 
+/// Throws InvalidArgument naming the file, the facet (and in ASCII the line) when a vertex of
+/// the STL file `path` (binary or ASCII) is not finite; gmsh would drop that facet silently.
+void check_stl_vertices(const std::string& path);
+
 }  // namespace sadr::geometry

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "mesh_builders.hpp"
 #include "sadr/common/status.hpp"
@@ -52,11 +53,16 @@ TEST(BadInput, MeshFilesAreRefusedWithFileAndReason) {
       {"nan.stl",
        "solid x\nfacet normal 0 0 1\nouter loop\nvertex nan 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
        "endloop\nendfacet\nendsolid x\n",
-       3, nullptr, "empty mesh"},  // gmsh drops a facet with a non-finite vertex
+       3, nullptr, "facet 0 (line 4) has a non-finite vertex (nan, 0, 0)"},
       {"inf.stl",
        "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex inf 0 0\nvertex 0 1 0\n"
        "endloop\nendfacet\nendsolid x\n",
-       3, nullptr, "empty mesh"},
+       3, nullptr, "facet 0 (line 5) has a non-finite vertex (inf, 0, 0)"},
+      {"one_bad.stl",
+       "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+       "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 1\nvertex 1 0 1\n"
+       "vertex 0 1 -nan\nendloop\nendfacet\nendsolid x\n",
+       3, nullptr, "facet 1 (line 13) has a non-finite vertex (0, 1, -nan)"},
       {"group.msh", kSquare, 2, "outlet", "no physical curve named 'outlet'; the file has inlet"},
       {"garbage.msh", "$MeshFormat\nthis is not a mesh\n", 2, nullptr, ""},
       {"dim.stl", "solid x\nendsolid x\n", 4, nullptr, "dimension must be 2 or 3"},
@@ -74,6 +80,28 @@ TEST(BadInput, MeshFilesAreRefusedWithFileAndReason) {
       EXPECT_NE(msg.find(path), std::string::npos) << c.file << ": " << msg;
       EXPECT_NE(msg.find(c.expect), std::string::npos) << c.file << ": " << msg;
     }
+  }
+}
+
+TEST(BadInput, BinaryStlWithOneNonFiniteVertexIsRefused) {
+  SurfaceMesh m = testing::sphere_mesh({}, 1.0, 8);
+  const int bad = m.triangles[5][1];
+  m.vertices[static_cast<std::size_t>(bad)].y = std::numeric_limits<double>::infinity();
+  std::size_t first = 0;  // the first facet that uses the vertex
+  while (m.triangles[first][0] != bad && m.triangles[first][1] != bad &&
+         m.triangles[first][2] != bad) {
+    ++first;
+  }
+  const std::string path = testing::temp_dir("bad") + "/one_inf.stl";
+  testing::write_stl_binary(path, m);
+  try {
+    (void)read_mesh(path, 3);
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidArgument& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path + ": facet " + std::to_string(first) + " has a non-finite vertex"),
+              std::string::npos)
+        << msg;
   }
 }
 
