@@ -189,6 +189,18 @@ TEST(EnsembleManifest, WriteReadRoundTripAndResumeList) {
   fs::remove_all(d);
 }
 
+TEST(EnsembleManifest, RealizationFoldersHaveOneName) {
+  EXPECT_EQ(realization_dir_name(0), "realization_0000");
+  EXPECT_EQ(realization_dir_name(42), "realization_0042");
+  EXPECT_EQ(realization_dir_name(12345), "realization_12345");
+  for (const std::uint64_t r : {0u, 7u, 9999u, 12345u}) {
+    EXPECT_TRUE(is_realization_dir_name(realization_dir_name(r))) << r;
+  }
+  EXPECT_FALSE(is_realization_dir_name("realization_12"));
+  EXPECT_FALSE(is_realization_dir_name("realization_00a1"));
+  EXPECT_FALSE(is_realization_dir_name("ensemble"));
+}
+
 TEST(EnsembleManifest, AMissingKeyIsNamed) {
   const fs::path d = scratch("manifest-bad");
   std::ofstream(d / "ensemble.json") << R"({"overrides": [], "scene_path": "s.yaml"})";
