@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
       "<name>.pvd (ParaView), checkpoint/, ensemble/ (with --realizations)."};
   app.set_version_flag("--version", std::string("sadr ") + sadr::kBuildVersion);
   app.require_subcommand(1);
+  // In the order of `sadr --help` (a braced list is evaluated left to right).
   const std::vector<Subcommand> commands{
       add_validate_command(app), add_run_command(app),      add_resume_command(app),
       add_ensemble_command(app), add_sweep_command(app),    add_sweep_task_command(app),
