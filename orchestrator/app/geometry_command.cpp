@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
+#include "cli.hpp"
 #include "commands.hpp"
 #include "sadr/common/log.hpp"
 #include "sadr/common/status.hpp"
@@ -18,15 +20,19 @@
 namespace sadr::orchestrator {
 namespace {
 
+struct GeometryCommandOptions {
+  std::string scene;
+  std::vector<std::string> overrides;  ///< --set PATH=VALUE
+  std::string output;                  ///< -o DIR ("" = ./geometry)
+};
+
 std::string num(double v, int digits = 6) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, v);
   return buf;
 }
 
-}  // namespace
-
-int cmd_geometry(const CliOptions& o) {
+int cmd_geometry(const GeometryCommandOptions& o) {
   namespace fs = std::filesystem;
   Scene scene;
   try {
@@ -122,6 +128,23 @@ int cmd_geometry(const CliOptions& o) {
   std::printf("wrote %s and %s\n", (dir / "particles.csv").string().c_str(),
               (dir / "particles.vtu").string().c_str());
   return kExitOk;
+}
+
+}  // namespace
+
+Subcommand add_geometry_command(CLI::App& app) {
+  auto o = std::make_shared<GeometryCommandOptions>();
+  auto* geometry = app.add_subcommand(
+      "geometry",
+      "write the particles a scene's `geometry` section makes (DIR/particles.csv and .vtu: kind, "
+      "surface, volume, density error, regions) and print counts, volumes, density error and "
+      "the smallest feature");
+  geometry->add_option("scene", o->scene, "scene file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  geometry->add_option("-o,--output", o->output, "output directory (default: ./geometry)");
+  add_set_option(geometry, o->overrides);
+  return {geometry, [o] { return cmd_geometry(*o); }};
 }
 
 }  // namespace sadr::orchestrator

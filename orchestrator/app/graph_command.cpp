@@ -7,9 +7,12 @@
 // -> DiffusionGraph::build, so the dump is exactly what the SSA uses.
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli.hpp"
+#include "commands.hpp"
 #include "graph_report.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
@@ -22,6 +25,13 @@
 
 namespace sadr::orchestrator {
 namespace {
+
+struct GraphCommandOptions {
+  std::string scene;
+  std::vector<std::string> overrides;  ///< --set PATH=VALUE
+  std::string format = "json";         ///< json or csv
+  std::string output;                  ///< -o FILE ("" = stdout)
+};
 
 /// Above this many particles the plan does not build the graph (it would cost
 /// the run's own graph build again); `sadr graph` always does.
@@ -86,7 +96,9 @@ GraphReport graph_report(const Scene& scene, const Plan& plan) {
   return r;
 }
 
-int cmd_graph(const CliOptions& o, const std::string& format) {
+namespace {
+
+int cmd_graph(const GraphCommandOptions& o) {
   const Scene scene = load_scene(o.scene, parse_overrides(o.overrides));
   const Plan plan = make_plan(scene);
   if (!plan.ssa_service) {
@@ -97,7 +109,7 @@ int cmd_graph(const CliOptions& o, const std::string& format) {
   const SsaGraph g = build_ssa_graph(scene, plan);
   const auto d = ssa::diagnose_graph(g.graph, g.model);
   std::string text;
-  if (format == "csv") {
+  if (o.format == "csv") {
     text = edges_csv(g);
   } else {
     nlohmann::json j;
@@ -147,6 +159,22 @@ int cmd_graph(const CliOptions& o, const std::string& format) {
     std::fprintf(stderr, "%s: warning: %s\n", o.scene.c_str(), d.isolated_warning().c_str());
   }
   return kExitOk;
+}
+
+}  // namespace
+
+Subcommand add_graph_command(CLI::App& app) {
+  auto o = std::make_shared<GraphCommandOptions>();
+  auto* graph = app.add_subcommand(
+      "graph",
+      "dump the SSA diffusion graph of a scene (edges, D_ij, jump rates) and its "
+      "diagnostics (docs/cli.md)");
+  graph->add_option("scene", o->scene, "scene file (YAML)")->required()->check(CLI::ExistingFile);
+  graph->add_option("--format", o->format, "json (default) or csv")
+      ->check(CLI::IsMember({"json", "csv"}));
+  graph->add_option("-o,--output", o->output, "write to FILE instead of stdout");
+  add_set_option(graph, o->overrides);
+  return {graph, [o] { return cmd_graph(*o); }};
 }
 
 }  // namespace sadr::orchestrator

@@ -1,13 +1,12 @@
 // SPDX-License-Identifier: MIT
 /// \file graph_report.hpp
-/// The SSA graph diagnostics of a scene for the plan, and `sadr graph`
-/// (graph_command.cpp; the diagnostics are sadr/ssa/graph_diagnostics.hpp).
+/// The SSA graph diagnostics of a scene for the plan (graph_command.cpp, also
+/// `sadr graph`; the diagnostics are sadr/ssa/graph_diagnostics.hpp).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "commands.hpp"
 #include "sadr/orchestrator/plan.hpp"
 #include "sadr/orchestrator/scene.hpp"
 
@@ -21,9 +20,5 @@ struct GraphReport {
 /// Builds the SSA graph of the scene's initial particles as ssa_service will
 /// and diagnoses it (skipped above 2e6 particles: a line says so).
 GraphReport graph_report(const Scene& scene, const Plan& plan);
-
-/// `sadr graph SCENE [--format json|csv] [-o FILE]`: the graph's edges with
-/// D_ij and each species' rate; the diagnostics go to stderr.
-int cmd_graph(const CliOptions& options, const std::string& format);
 
 }  // namespace sadr::orchestrator

@@ -6,7 +6,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 
+#include "cli.hpp"
 #include "commands.hpp"
 #include "sadr/common/log.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
@@ -30,8 +32,6 @@ void write_new_file(const std::string& path, const std::string& text, mode_t mod
   if (!ok) throw IoError("cannot write '" + path + "': " + std::strerror(errno));
 }
 
-}  // namespace
-
 int cmd_keygen(const std::string& file, bool show) {
   if (show) {
     std::printf("%s\n", wire::read_public_key(file).c_str());
@@ -49,7 +49,26 @@ int cmd_keygen(const std::string& file, bool show) {
   return kExitOk;
 }
 
-void use_remote_keys(const CliOptions& o) {
+}  // namespace
+
+Subcommand add_keygen_command(CLI::App& app) {
+  struct KeygenOptions {
+    std::string file;
+    bool show = false;
+  };
+  auto o = std::make_shared<KeygenOptions>();
+  auto* keygen = app.add_subcommand(
+      "keygen",
+      "write a CURVE key pair for tcp between sadr and services started by hand: FILE "
+      "(mode 0600) and FILE.pub (docs/cli.md, \"Security\")");
+  keygen->add_option("file", o->file, "the key pair file to create (never overwritten)")
+      ->required();
+  keygen->add_flag("--show", o->show, "print the public key of an existing FILE instead");
+
+  return {keygen, [o] { return cmd_keygen(o->file, o->show); }};
+}
+
+void use_remote_keys(const ServiceOptions& o) {
   const RemoteKeys& k = o.remote_keys;
   const bool any_server_key =
       !k.server_key.empty() || !k.fluid_server_key.empty() || !k.ssa_server_key.empty();

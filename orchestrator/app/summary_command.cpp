@@ -1,287 +1,17 @@
 // SPDX-License-Identifier: MIT
-// `sadr summary DIR`, also printed at the end of `sadr run` / `sadr resume`
-// (not with -q): what a run did, from its run.json and its first and last CSV
-// frames, and the health of the run from its CSV frames (run_health.hpp). For an ensemble
-// directory: the realizations' manifests summed and
-// the species totals of the ensemble mean (ensemble/frame_*.csv).
-#include <algorithm>
+// `sadr summary DIR` (run_summary.hpp), also printed at the end of `sadr run`
+// / `sadr resume` (not with -q).
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <map>
-#include <string>
-#include <vector>
+#include <memory>
 
-#include <nlohmann/json.hpp>
-
+#include "cli.hpp"
 #include "commands.hpp"
-#include "csv_cells.hpp"
 #include "sadr/common/log.hpp"
-#include "sadr/orchestrator/run_health.hpp"
-#include "sadr/orchestrator/run_manifest.hpp"
-#include "sadr/orchestrator/scene_loader.hpp"
-#include "sadr/orchestrator/scene_override.hpp"
-#include "sadr/orchestrator/sweep_frames.hpp"
+#include "sadr/orchestrator/run_summary.hpp"
 
 namespace sadr::orchestrator {
 namespace fs = std::filesystem;
-namespace {
-
-/// Column sums of a frame CSV: the time (first column of the first row) and,
-/// per species column, the sum over the particles and (frames only) the sum
-/// of value x volume m / rho (the amount, for a concentration).
-struct ColumnTotals {
-  double time = 0;
-  std::vector<std::string> names;
-  std::vector<double> totals, amounts;
-};
-
-ColumnTotals sum_columns(const fs::path& path, bool ensemble) {
-  std::ifstream in(path);
-  std::string line;
-  if (!std::getline(in, line)) throw InvalidArgument(path.string() + ": empty file");
-  const std::vector<std::string> header = split_csv_line(line);
-  // frames: time,id,kind,x,y,z,vx,vy,vz,density,mass,<species...>;
-  // ensemble: time,id,realizations,<s>_mean,<s>_var,...
-  const std::size_t first = ensemble ? 3 : 11;
-  ColumnTotals t;
-  std::vector<std::size_t> cols;
-  for (std::size_t c = first; c < header.size(); ++c) {
-    const std::string& h = header[c];
-    if (ensemble && (h.size() < 5 || h.compare(h.size() - 5, 5, "_mean") != 0)) continue;
-    cols.push_back(c);
-    t.names.push_back(ensemble ? h.substr(0, h.size() - 5) : h);
-  }
-  t.totals.assign(cols.size(), 0.0);
-  t.amounts.assign(cols.size(), 0.0);
-  for (std::size_t row = 0; std::getline(in, line); ++row) {
-    const std::vector<std::string> cells = split_csv_line(line);
-    if (cells.size() != header.size()) {
-      throw InvalidArgument(path.string() + ":" + std::to_string(row + 2) + ": " +
-                            std::to_string(cells.size()) + " columns, expected " +
-                            std::to_string(header.size()));
-    }
-    if (row == 0) t.time = std::stod(cells[0]);
-    const double volume = ensemble ? 0.0 : std::stod(cells[10]) / std::stod(cells[9]);
-    for (std::size_t k = 0; k < cols.size(); ++k) {
-      const double v = std::stod(cells[cols[k]]);
-      t.totals[k] += v;
-      t.amounts[k] += v * volume;
-    }
-  }
-  return t;
-}
-
-nlohmann::json read_manifest(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InvalidArgument("'" + path.string() + "': cannot open (not a sadr run?)");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw InvalidArgument(path.string() + ": not valid JSON: " + e.what());
-  }
-}
-
-std::vector<fs::path> sorted_files(const fs::path& dir, const std::string& ext) {
-  std::vector<fs::path> out;
-  if (fs::is_directory(dir)) {
-    for (const auto& e : fs::directory_iterator(dir)) {
-      if (e.path().extension() == ext) out.push_back(e.path());
-    }
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-double number(const nlohmann::json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : 0.0;
-}
-
-/// Sums the counters and timings of several manifests (one for a run).
-struct Totals {
-  double steps = 0, substeps = 0, overlapped = 0, events = 0, time = 0;
-  bool events_recorded = true;
-  std::map<std::string, double> timings;
-  std::vector<std::string> statuses;
-  void add(const nlohmann::json& m) {
-    steps += number(m, "steps");
-    substeps += number(m, "fluid_substeps");
-    overlapped += number(m, "overlapped_steps");
-    if (m.contains("ssa_events")) {
-      events += number(m, "ssa_events");
-    } else {
-      events_recorded = false;
-    }
-    time = std::max(time, number(m, "time"));
-    if (m.contains("timings_s")) {
-      for (const auto& [k, v] : m["timings_s"].items()) timings[k] += v.get<double>();
-    }
-    statuses.push_back(m.value("status", "?"));
-  }
-};
-
-/// Totals of each species at the first and last frame; a deterministic
-/// species (plan.fluid_species: a concentration) as its amount sum c_i V_i.
-void print_species(std::FILE* out, const std::vector<fs::path>& csv, bool ensemble,
-                   const nlohmann::json& plan) {
-  if (csv.empty()) {
-    std::fprintf(out, "  species totals: no CSV frames (add csv to output.formats)\n");
-    return;
-  }
-  const ColumnTotals a = sum_columns(csv.front(), ensemble);
-  const ColumnTotals b = sum_columns(csv.back(), ensemble);
-  char first[48], last[48];
-  std::snprintf(first, sizeof first, "first frame, t = %g", a.time);
-  std::snprintf(last, sizeof last, "last frame, t = %g", b.time);
-  std::fprintf(out, "  species totals%s:\n    %-32s %22s  %22s\n",
-               ensemble ? " of the ensemble mean" : "", "", first, last);
-  const auto& fluid =
-      plan.contains("fluid_species") ? plan["fluid_species"] : nlohmann::json::array();
-  for (std::size_t k = 0; k < a.names.size() && k < b.names.size(); ++k) {
-    const bool concentration = std::find(fluid.begin(), fluid.end(), a.names[k]) != fluid.end();
-    std::string label = a.names[k];
-    if (concentration) label += ensemble ? " (sum of concentrations)" : " (amount, sum c V)";
-    const bool amount = concentration && !ensemble;
-    std::fprintf(out, "    %-32s %22.10g  %22.10g\n", label.c_str(),
-                 amount ? a.amounts[k] : a.totals[k], amount ? b.amounts[k] : b.totals[k]);
-  }
-}
-
-void print_stages(std::FILE* out, const Totals& t) {
-  const auto get = [&](const char* k) {
-    const auto it = t.timings.find(k);
-    return it == t.timings.end() ? 0.0 : it->second;
-  };
-  std::fprintf(out, "  wall time per stage [s]:\n");
-  const struct {
-    const char* label;
-    double seconds;
-    const char* note;
-  } rows[] = {
-      {"fluid", get("fluid"), "fluid_service calls (its own compute time below)"},
-      {"  fluid compute", get("fluid_compute"), "inside fluid_service"},
-      {"transfer", get("transfer") + get("back_transfer"), "particles to ssa, counts back"},
-      {"graph rebuild", get("ssa_graph"), "inside ssa_service"},
-      {"NSM", get("ssa_nsm"), "inside ssa_service"},
-      {"ssa (call)", get("ssa"), "ssa_service calls, rebuild + NSM + messages"},
-      {"ssa wait", get("ssa_wait"), "SSA time the overlapped fluid did not hide"},
-      {"output", get("output"), "frames"},
-      {"checkpoint", get("checkpoint"), ""},
-      {"coupling loop", get("coupling_loop"), "all of the above, wall clock"},
-  };
-  for (const auto& r : rows) {
-    std::fprintf(out, "    %-16s %10.3f   %s\n", r.label, r.seconds, r.note);
-  }
-}
-
-/// The health section (run_health.hpp): the run's scene read again (scene_path and overrides of
-/// run.json, same hash), else values estimated from the first frame; at most 64 CSV frames in all,
-/// evenly spaced over each run's frames, the first and last of each always.
-void print_health(std::FILE* out, const std::vector<fs::path>& runs, const nlohmann::json& first) {
-  HealthContext context;
-  std::string note;
-  try {
-    const Scene scene =
-        load_scene(first.value("scene_path", ""),
-                   parse_overrides(first.value("overrides", std::vector<std::string>{})));
-    if (scene.source_hash == first.value("scene_hash", "")) {
-      context = health_context(scene);
-    } else {
-      note = "the scene file changed since the run (hash " + scene.source_hash + ")";
-    }
-  } catch (const std::exception& e) {
-    note = std::string("the scene could not be read again: ") + e.what();
-  }
-  if (!context.from_scene) {
-    const nlohmann::json plan = first.value("plan", nlohmann::json::object());
-    for (const auto& name : plan.value("fluid_species", std::vector<std::string>{})) {
-      context.species.push_back({name, false, {}, {}});
-    }
-  }
-  HealthCheck check(std::move(context));
-  const std::size_t per_run = std::max<std::size_t>(2, 64 / std::max<std::size_t>(1, runs.size()));
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    std::vector<fs::path> frames;
-    for (const auto& [index, path] : list_csv_frames(runs[r])) frames.push_back(path);
-    const std::size_t n = frames.size();
-    const std::size_t take = std::min(n, per_run);
-    for (std::size_t k = 0; k < take; ++k) {
-      const std::size_t i = take == 1 ? n - 1 : k * (n - 1) / (take - 1);
-      const CsvFrame f = read_frame_csv(frames[i]);
-      check.add_frame(f.particles, f.species, f.time, frames[i].string(), r);
-    }
-  }
-  if (check.frames() == 0) {
-    std::fprintf(out, "  health: no CSV frames (add csv to output.formats)\n");
-    return;
-  }
-  const auto lines = check.lines();
-  for (std::size_t k = 0; k < lines.size(); ++k) {
-    std::fprintf(out, "  %s\n", lines[k].c_str());
-    if (k == 0 && !note.empty()) std::fprintf(out, "    (%s)\n", note.c_str());
-  }
-}
-
-void print_summary(const fs::path& dir, std::FILE* out) {
-  const bool is_run = fs::exists(dir / "run.json");
-  std::vector<fs::path> realizations;
-  if (!is_run && fs::is_directory(dir)) {
-    for (const auto& e : fs::directory_iterator(dir)) {
-      if (e.is_directory() && fs::exists(e.path() / "run.json") &&
-          is_realization_dir_name(e.path().filename().string())) {
-        realizations.push_back(e.path());
-      }
-    }
-    std::sort(realizations.begin(), realizations.end());
-  }
-  if (!is_run && realizations.empty()) {
-    throw InvalidArgument("'" + dir.string() +
-                          "' is neither a run (run.json) nor an ensemble (realization_NNNN/)");
-  }
-  Totals t;
-  nlohmann::json first;
-  for (const auto& m : is_run ? std::vector<fs::path>{dir} : realizations) {
-    const nlohmann::json j = read_manifest(m / "run.json");
-    if (first.is_null()) first = j;
-    t.add(j);
-  }
-  const std::size_t n = is_run ? 1 : realizations.size();
-  std::fprintf(out, "sadr summary: %s\n", dir.string().c_str());
-  std::fprintf(out, "  scene: %s (%s)\n", first.value("scene_path", "?").c_str(),
-               first.value("scene_hash", "?").c_str());
-  if (is_run) {
-    std::fprintf(out, "  run: realization %llu, seed %llu, status %s, %s\n",
-                 first.value("realization", 0ULL), first.value("seed", 0ULL),
-                 t.statuses.front().c_str(), first.value("mode", "?").c_str());
-  } else {
-    const auto ok = std::count(t.statuses.begin(), t.statuses.end(), "ok");
-    std::fprintf(out,
-                 "  ensemble: %zu realizations (%td with status ok); counters and times summed\n",
-                 n, ok);
-  }
-  std::fprintf(
-      out, "  t = %g: %.0f coupling steps, %.0f fluid sub-steps (%.2f per step), %.0f overlapped\n",
-      t.time, t.steps, t.substeps, t.steps > 0 ? t.substeps / t.steps : 0.0, t.overlapped);
-  if (t.events_recorded) {
-    std::fprintf(out, "  SSA events: %.0f (reactions + diffusion jumps)\n", t.events);
-  } else {
-    std::fprintf(out, "  SSA events: not in run.json (written before sadr recorded them)\n");
-  }
-  print_species(out, sorted_files(dir / (is_run ? "frames" : "ensemble"), ".csv"), !is_run,
-                first.value("plan", nlohmann::json::object()));
-  print_stages(out, t);
-  print_health(out, is_run ? std::vector<fs::path>{dir} : realizations, first);
-  const fs::path run0 = is_run ? dir : realizations.front();
-  const auto pvd = sorted_files(run0, ".pvd");
-  const std::size_t frames = first.contains("frames") ? first["frames"].size() : 0;
-  std::fprintf(out, "  outputs: %s/run.json, %s/frames/ (%zu files)%s%s%s%s\n",
-               run0.string().c_str(), run0.string().c_str(), frames,
-               pvd.empty() ? "" : ", ParaView: ", pvd.empty() ? "" : pvd.front().string().c_str(),
-               fs::exists(run0 / "checkpoint") ? ", checkpoint/" : "",
-               is_run ? "" : (", ensemble/ (mean, variance) in " + dir.string()).c_str());
-}
-
-}  // namespace
 
 void summarize_at_end(const fs::path& dir, bool quiet) {
   if (quiet) return;
@@ -292,9 +22,20 @@ void summarize_at_end(const fs::path& dir, bool quiet) {
   }
 }
 
-int cmd_summary(const CliOptions& o) {
-  print_summary(o.directory, stdout);
-  return kExitOk;
+Subcommand add_summary_command(CLI::App& app) {
+  auto directory = std::make_shared<std::string>();
+  auto* summary = app.add_subcommand(
+      "summary",
+      "what a run or ensemble did: species totals at the first and last frame, wall time per "
+      "stage, steps, sub-steps, events, outputs (also printed at the end of run/resume unless -q)");
+  summary->add_option("directory", *directory, "the output directory of a run or an ensemble")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+
+  return {summary, [directory] {
+            print_summary(*directory, stdout);
+            return static_cast<int>(kExitOk);
+          }};
 }
 
 }  // namespace sadr::orchestrator

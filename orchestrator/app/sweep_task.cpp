@@ -9,8 +9,10 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <optional>
 
+#include "cli.hpp"
 #include "commands.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
@@ -20,7 +22,13 @@ namespace sadr::orchestrator {
 namespace fs = std::filesystem;
 namespace {
 
-std::size_t task_index(const CliOptions& o) {
+struct SweepTaskOptions {
+  std::string directory;   ///< the sweep directory
+  std::string index;       ///< --index ("" = from the environment)
+  ServiceOptions service;  ///< defaults but -q
+};
+
+std::size_t task_index(const SweepTaskOptions& o) {
   std::string text = o.index;
   const char* from = "--index";
   for (const char* var : {"SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX"}) {
@@ -56,13 +64,12 @@ double cpu_seconds() {
   return s;
 }
 
-}  // namespace
-
-int cmd_sweep_task(const CliOptions& o) {
+int cmd_sweep_task(const SweepTaskOptions& c) {
+  const ServiceOptions& o = c.service;
   install_signal_handlers();
-  const fs::path dir = o.directory;
+  const fs::path dir = c.directory;
   const SweepManifest m = SweepManifest::read(dir);
-  const SweepRun& run = m.run(task_index(o));
+  const SweepRun& run = m.run(task_index(c));
   const fs::path rd = dir / run.dir;
   ensure_directory(rd);
   const auto previous = read_run_outcome(rd);
@@ -105,6 +112,24 @@ int cmd_sweep_task(const CliOptions& o) {
   out.cpu_s = cpu_seconds();
   write_run_outcome(rd, out);
   return out.exit_code;
+}
+
+}  // namespace
+
+Subcommand add_sweep_task_command(CLI::App& app) {
+  auto o = std::make_shared<SweepTaskOptions>();
+  auto* sweep_task =
+      app.add_subcommand("sweep-task", "one run of a sweep (the worker command of every executor)");
+  sweep_task->add_option("directory", o->directory, "the sweep directory")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  sweep_task->add_option("--index", o->index,
+                         "run index (default: SLURM_ARRAY_TASK_ID, else JOB_COMPLETION_INDEX)");
+  sweep_task->add_flag("-q,--quiet", o->service.quiet, "no plan");
+  return {sweep_task, [o] {
+            apply_log_level(o->service.quiet, "info");
+            return cmd_sweep_task(*o);
+          }};
 }
 
 }  // namespace sadr::orchestrator

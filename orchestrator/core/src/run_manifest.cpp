@@ -12,15 +12,23 @@
 #include "sadr/orchestrator/hash.hpp"
 
 namespace sadr::orchestrator {
+namespace {
+
+/// The one spelling of a realization's folder: this prefix and at least 4 digits.
+constexpr std::string_view kRealizationPrefix = "realization_";
+
+}  // namespace
 
 std::string realization_dir_name(std::uint64_t r) {
   std::string digits = std::to_string(r);
   if (digits.size() < 4) digits.insert(0, 4 - digits.size(), '0');
-  return "realization_" + digits;
+  std::string name(kRealizationPrefix);
+  name.append(digits);
+  return name;
 }
 
 bool is_realization_dir_name(std::string_view name) {
-  constexpr std::string_view prefix = "realization_";
+  constexpr std::string_view prefix = kRealizationPrefix;
   if (name.size() < prefix.size() + 4 || name.substr(0, prefix.size()) != prefix) return false;
   for (const char c : name.substr(prefix.size())) {
     if (c < '0' || c > '9') return false;
