@@ -89,10 +89,10 @@ TEST(MorrisWalls, TangentPlanesPerParticleMeasureFromThePairDisplacement) {
   };
   EXPECT_NEAR(pair(above, 0), 1.25, 1e-12);
   EXPECT_NEAR(pair(diagonal, 1), 1.25, 1e-12);
-  // off its normal line the plane is within (lateral offset)^2 / (2 R) of the circle: the
-  // diagonal fluid particle lies 0.02 + 0.12 (1 - cos 45 deg) = 0.0551 in front of particle 0's
-  // plane y = 0.6
-  EXPECT_NEAR(pair(diagonal, 0), 1.0 + 0.005 / (0.5 + rc - 0.6), 1e-12);
+  // off its normal line the plane departs from the circle by about s^2 / (2 R): with s = 0.085
+  // on R = 0.1 the diagonal fluid particle (y = 0.585) lies behind particle 0's plane y = 0.6,
+  // so d_i is floored at 1e-3 h and beta capped
+  EXPECT_DOUBLE_EQ(pair(diagonal, 0), 1.5);
 }
 
 // The same extrapolation for a Dirichlet species: the ghost value C_w + (beta - 1)(C_w - C_i)
