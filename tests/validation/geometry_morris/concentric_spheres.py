@@ -81,7 +81,6 @@ seed: {seed}
 
 
 def analyse(frames):
-    sums = None
     per_frame = []
     for path in frames:
         with open(path) as f:
@@ -97,6 +96,7 @@ def analyse(frames):
     b = c_in / (1 / R1 - 1 / R2)
     a0 = -b / R2
     edges = np.arange(R1, R2 + 1e-9, DX)
+
     def error(sel):
         num = den = 0.0
         shells = []
