@@ -67,6 +67,34 @@ TEST(MorrisWalls, APlaneTangentAtTheTopIsWrongOnTheDiagonal) {
   EXPECT_DOUBLE_EQ(walls.beta(diagonal, 1, h), 1.5);
 }
 
+TEST(MorrisWalls, TangentPlanesPerParticleMeasureFromThePairDisplacement) {
+  // Walls made by a scene's geometry: each wall particle its own tangent plane. On the circle of
+  // radius 0.1 the tangent plane of each particle is exact along its own normal line, so the
+  // fluid particles on those lines get the circle's beta; d_i comes from the pair displacement.
+  Disk d(0.1, {1, 0, 0});
+  const double c = 1 / std::sqrt(2.0);
+  d.model.wall_tangents.particles = {0, 1};
+  d.model.wall_tangents.depths = {0.005, 0.005};
+  d.model.wall_tangents.normals = {0, 1, 0, c, c, 0};
+  MorrisWalls walls;
+  walls.setup(d.model, d.state);
+  ASSERT_TRUE(walls.enabled());
+  EXPECT_TRUE(walls.extrapolates(0) && walls.extrapolates(1));
+  const double h = 0.037, r = 0.12, rc = r / std::sqrt(2.0);
+  const double above[3] = {0.5, 0.5 + r, 0}, diagonal[3] = {0.5 + rc, 0.5 + rc, 0};
+  auto pair = [&](const double* xi, std::uint32_t j) {
+    const double xij[3] = {xi[0] - d.state.positions[3 * j], xi[1] - d.state.positions[3 * j + 1],
+                           0};
+    return walls.beta<2>(xi, xij, j, h);
+  };
+  EXPECT_NEAR(pair(above, 0), 1.25, 1e-12);
+  EXPECT_NEAR(pair(diagonal, 1), 1.25, 1e-12);
+  // off its normal line the plane departs from the circle by about s^2 / (2 R): with s = 0.085
+  // on R = 0.1 the diagonal fluid particle (y = 0.585) lies behind particle 0's plane y = 0.6,
+  // so d_i is floored at 1e-3 h and beta capped
+  EXPECT_DOUBLE_EQ(pair(diagonal, 0), 1.5);
+}
+
 // The same extrapolation for a Dirichlet species: the ghost value C_w + (beta - 1)(C_w - C_i)
 // multiplies the pair term by beta; a kFree neighbour is not affected.
 TEST(MorrisWalls, DirichletSpeciesPairTermIsMultipliedByBeta) {

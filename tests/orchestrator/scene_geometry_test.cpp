@@ -305,9 +305,8 @@ TEST(SceneGeometry, RefusalsNameFileLineAndWhatIsAllowed) {
        "{type: disk, center: [0.7, 0.5], radius: 0.2, rotate: {axis: [0, 0, 1], angle: 5}}",
        "expected an angle in degrees"},
       {"      role: solid\n", "      role: fluid\n", "a second fluid body; allowed: one"},
-      {"backend: static, h_over_dx: 3.0",
-       "backend: sdpd, h_over_dx: 3.0, sound_speed: 1, shear_viscosity: 0.1, wall_model: morris",
-       "'morris' is not available for walls made by 'geometry'"},
+      {"backend: static, h_over_dx: 3.0", "backend: static, h_over_dx: 3.0, wall_model: morris",
+       "unknown wall model 'morris'"},
   };
   for (const auto& c : cases) {
     const std::string msg = error_of(replace_once(kChannel, c.from, c.to));

@@ -93,6 +93,38 @@ TEST(MorrisWalls, EdgesBetweenFluidAndSurfaceWallsAreScaledByBetaBothWays) {
   EXPECT_NEAR(b.voxel_rate(0), beta_l * a.voxel_rate(0), 1e-12 * a.voxel_rate(0));
 }
 
+TEST(MorrisWalls, PerParticleTangentPlanesGiveTheEdgesOfTheEquivalentSurfaces) {
+  // Walls made by a scene's geometry: the same two planes as one tangent plane per wall voxel
+  // (depth 0.25 behind x = 0.75, 0.2 behind x = 11.3) scale the same edges by the same beta, to
+  // rounding.
+  Chain planes, tangents;
+  planes.add_surfaces();
+  tangents.model.morris_tangents.particles = {0, 11};
+  tangents.model.morris_tangents.depths = {0.25, 0.2};
+  tangents.model.morris_tangents.normals = {1, 0, 0, -1, 0, 0};
+  NsmSolver a(planes.model, 1), b(tangents.model, 1);
+  a.update_graph(planes.p);
+  b.update_graph(tangents.p);
+  ASSERT_EQ(a.graph().edge_count(), b.graph().edge_count());
+  for (std::size_t k = 0; k < a.graph().edge_count(); ++k) {
+    const double w = a.graph().edges[k].weight;
+    EXPECT_NEAR(b.graph().edges[k].weight, w, 1e-13 * w) << k;
+  }
+  for (std::uint32_t i = 0; i < 12; ++i) {
+    EXPECT_NEAR(b.graph().sum_all[i], a.graph().sum_all[i], 1e-13 * a.graph().sum_all[i]);
+  }
+  // Not together with region surfaces; bad arrays are refused by name.
+  tangents.model.morris_walls = planes.model.morris_walls;
+  EXPECT_NE(message_of([&] { tangents.model.validate(); }).find("not together with morris_walls"),
+            std::string::npos);
+  tangents.model.morris_walls.clear();
+  tangents.model.morris_tangents.normals[0] = 2;
+  EXPECT_NE(message_of([&] {
+              tangents.model.validate();
+            }).find("morris_wall_tangents[0].normal has length 2"),
+            std::string::npos);
+}
+
 TEST(MorrisWalls, TheFirstListedSurfaceWinsAndFluidVoxelsAreIgnored) {
   Chain c;
   // voxel 0 listed by a far plane after the right one; fluid voxel 1 listed too (ignored)

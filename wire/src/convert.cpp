@@ -137,6 +137,30 @@ WallSurface from_proto(const common::v1::WallPlane& in, std::string_view where) 
   return s;
 }
 
+void to_proto(const WallTangents& in, common::v1::WallTangents& out) {
+  out.mutable_particles()->Assign(in.particles.begin(), in.particles.end());
+  out.mutable_depths()->Assign(in.depths.begin(), in.depths.end());
+  out.mutable_normals()->Assign(in.normals.begin(), in.normals.end());
+}
+
+WallTangents from_proto(const common::v1::WallTangents& in, std::size_t n, std::string_view where) {
+  WallTangents t;
+  t.particles.assign(in.particles().begin(), in.particles().end());
+  t.depths.assign(in.depths().begin(), in.depths().end());
+  t.normals.assign(in.normals().begin(), in.normals().end());
+  const auto problems = t.problems(n);
+  if (!problems.empty()) {
+    std::string msg(where);
+    msg.append(": ");
+    for (std::size_t k = 0; k < problems.size(); ++k) {
+      if (k > 0) msg.append("; ");
+      msg.append(problems[k]);
+    }
+    throw InvalidArgument(msg);
+  }
+  return t;
+}
+
 namespace {
 
 /// in.kinds into `kinds` (resized), each checked to be a ParticleKind value.

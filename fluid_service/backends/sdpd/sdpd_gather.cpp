@@ -216,7 +216,7 @@ void SdpdBackend::gather_pairs(std::size_t i, const Y& y, const GatherTerms& t, 
     // beta (C_w - C_i) for Dirichlet species (the held value on the wall surface).
     double beta = 1.0;
     if (morris_.enabled() && morris_.extrapolates(j)) {
-      beta = morris_.beta(&x[3 * i], j, t.h);
+      beta = morris_.beta<D>(&x[3 * i], g.x.data(), j, t.h);
       std::array<double, D> vb;
       for (int a = 0; a < D; ++a) vb[a] = beta * vi[a];
       const SdpdMomentumTerm pressure_only{0.0};

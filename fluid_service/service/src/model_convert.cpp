@@ -188,10 +188,17 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
       throw InvalidArgument(where + ".wall_model = " + std::to_string(in.wall_model()) +
                             " (allowed: WALL_MODEL_STATIONARY, WALL_MODEL_MORRIS)");
   }
-  if (m.wall_model == WallModel::kMorrisExtrapolated && in.wall_planes_size() == 0) {
+  if (in.has_wall_tangents()) {
+    if (in.wall_planes_size() != 0) {
+      throw InvalidArgument(where + ".wall_tangents: not together with wall_planes");
+    }
+    m.wall_tangents = wire::from_proto(in.wall_tangents(), n_particles, where + ".wall_tangents");
+  }
+  if (m.wall_model == WallModel::kMorrisExtrapolated && in.wall_planes_size() == 0 &&
+      m.wall_tangents.empty()) {
     throw InvalidArgument(where +
                           ".wall_model = WALL_MODEL_MORRIS needs wall_planes (the wall "
-                          "surface of each region of wall particles)");
+                          "surface of each region of wall particles) or wall_tangents");
   }
   if (in.has_open_boundary()) {
     m.open_boundary = open_boundary(wire::from_proto(in.open_boundary(), where + ".open_boundary"));

@@ -10,6 +10,7 @@
 #include <google/protobuf/io/zero_copy_stream_impl_lite.h>
 
 #include "sadr/orchestrator/hash.hpp"
+#include "sadr/orchestrator/scene_wall_tangents.hpp"
 #include "sadr/wire/convert.hpp"
 #include "sadr/wire/model_proto.hpp"
 
@@ -133,6 +134,10 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
     if (!r.stochastic) add_reaction(r, *m->add_reactions(), regions_used);
   }
   add_wall_planes(scene, *m->mutable_wall_planes(), regions_used);
+  // Morris walls made by the geometry: every wall particle's tangent plane (unset otherwise).
+  if (const WallTangents t = scene_wall_tangents(scene); !t.empty()) {
+    wire::to_proto(t, *m->mutable_wall_tangents());
+  }
   add_regions(scene, regions_used, m->mutable_regions());
   wire::to_proto(scene.particles, *init.mutable_particles(), /*with_velocities=*/true);
   return init;
@@ -172,6 +177,9 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
   }
   if (scene.fluid.wall_model == "morris" && ssa_dirichlet) {
     add_wall_planes(scene, *m->mutable_wall_planes(), regions_used);
+    if (const WallTangents t = scene_wall_tangents(scene); !t.empty()) {
+      wire::to_proto(t, *m->mutable_wall_tangents());
+    }
   }
   add_regions(scene, regions_used, m->mutable_regions());
   wire::to_proto(particles, *init.mutable_particles(), /*with_velocities=*/false);

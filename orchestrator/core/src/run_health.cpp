@@ -9,6 +9,7 @@
 
 #include "sadr/common/periodic.hpp"
 #include "sadr/orchestrator/scene.hpp"
+#include "sadr/orchestrator/scene_wall_tangents.hpp"
 
 namespace sadr::orchestrator {
 namespace {
@@ -180,6 +181,7 @@ HealthContext health_context(const Scene& s) {
     }
     c.surfaces.push_back(std::move(sf));
   }
+  c.tangents = scene_wall_tangents(s);
   for (const Species& sp : s.species) {
     HealthContext::SpeciesInfo info;
     info.name = sp.name;
@@ -261,13 +263,21 @@ PenetrationResult find_wall_penetration(const ParticleState& p, const HealthCont
   for (std::size_t s = 0; s < c.surfaces.size(); ++s) {
     for (const auto id : c.surfaces[s].wall_ids) surface_of.emplace(id, static_cast<int>(s));
   }
+  // Wall particles with a tangent plane (tangent_of: its entry in c.tangents, -1: none).
+  std::map<std::uint64_t, int> tangent_index;
+  for (std::size_t k = 0; k < c.tangents.size(); ++k) {
+    tangent_index.emplace(c.tangents.particles[k], static_cast<int>(k));
+  }
   std::vector<std::size_t> walls, fluid;
-  std::vector<int> tag(p.size(), -1);
+  std::vector<int> tag(p.size(), -1), tangent_of(p.size(), -1);
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.kind(i) == ParticleKind::kWall) {
       walls.push_back(i);
-      const auto it = surface_of.find(p.ids.empty() ? i : p.ids[i]);
+      const std::uint64_t id = p.ids.empty() ? i : p.ids[i];
+      const auto it = surface_of.find(id);
       if (it != surface_of.end()) tag[i] = it->second;
+      const auto t = tangent_index.find(id);
+      if (t != tangent_index.end()) tangent_of[i] = t->second;
     } else if (p.kind(i) == ParticleKind::kFluid) {
       fluid.push_back(i);
     }
@@ -281,6 +291,8 @@ PenetrationResult find_wall_penetration(const ParticleState& p, const HealthCont
     const double* x = &p.positions[3 * i];
     std::fill(near.begin(), near.end(), 0);
     double depth = 0;
+    double foot_best = h;      // the tangent wall particle whose closest surface point is nearest
+    double tangent_depth = 0;  // how far past that particle's tangent plane
     const Index k = g.index(x);
     for (const Index& o : offsets) {
       Index m;
@@ -289,6 +301,24 @@ PenetrationResult find_wall_penetration(const ParticleState& p, const HealthCont
       for (std::size_t q = b.start[cell]; q < b.start[cell + 1]; ++q) {
         const std::size_t j = b.items[q];
         const double r = g.separation(x, &p.positions[3 * j]);
+        if (tangent_of[j] >= 0) {
+          if (r >= h) continue;
+          const auto t = static_cast<std::size_t>(tangent_of[j]);
+          double rij[3] = {0, 0, 0}, foot2 = 0;
+          for (int a = 0; a < g.d; ++a) {
+            const auto ua = static_cast<std::size_t>(a);
+            rij[ua] = x[ua] - p.positions[3 * j + ua];
+            if (g.periodic[ua]) rij[ua] = minimum_image(rij[ua], g.len[ua]);
+            const double f = rij[ua] - c.tangents.depths[t] * c.tangents.normals[3 * t + ua];
+            foot2 += f * f;
+          }
+          const double foot = std::sqrt(foot2);
+          if (foot < foot_best) {
+            foot_best = foot;
+            tangent_depth = -c.tangents.signed_distance(t, rij);
+          }
+          continue;
+        }
         if (tag[j] < 0) {
           if (r < 0.5 * dx) depth = std::max(depth, 0.5 * dx - r);
         } else if (r < h) {
@@ -296,6 +326,7 @@ PenetrationResult find_wall_penetration(const ParticleState& p, const HealthCont
         }
       }
     }
+    if (tangent_depth > kHealthTangentSlack * dx) depth = std::max(depth, tangent_depth);
     for (std::size_t s = 0; s < c.surfaces.size(); ++s) {
       // A plane counts near its region's wall particles; a circle or sphere everywhere.
       if (!near[s] && !(c.surfaces[s].surface.radius > 0)) continue;
@@ -580,6 +611,10 @@ std::vector<std::string> HealthCheck::lines() const {
   for (const auto& s : c_.surfaces) tests += (tests.empty() ? "" : ", ") + s.region;
   tests = tests.empty() ? "wall particles closer than dx/2"
                         : "past the wall_planes of " + tests + "; other walls: closer than dx/2";
+  if (!c_.tangents.empty()) {
+    tests = "past the tangent plane of the nearest wall particle by more than " +
+            fmt(kHealthTangentSlack) + " dx";
+  }
   if (penetration_max == 0) {
     out.push_back("  fluid inside walls: none (" + tests + ")");
   } else {

@@ -84,15 +84,16 @@ std::string backends_with(bool (*has)(const schema::Backend&)) {
 }
 
 /// fluid.wall_planes: [{region, point, normal}] (a plane) or [{region, center, radius}] (a
-/// circle in 2D, a sphere in 3D, the fluid outside), only (and at least one) with wall_model
-/// morris. The region names are checked once the regions are read (check_wall_planes).
-void read_wall_planes(SceneContext& ctx, const Field& f) {
+/// circle in 2D, a sphere in 3D, the fluid outside), only (and at least one, unless the walls
+/// come from a `geometry` section) with wall_model morris. The region names are checked once the
+/// regions are read (check_wall_planes).
+void read_wall_planes(SceneContext& ctx, const Field& f, bool geometry) {
   YamlReader& r = ctx.reader;
   FluidSettings& fl = ctx.scene.fluid;
   const Field planes = YamlReader::child(f, "wall_planes");
   const bool morris = fl.wall_model == "morris";
   if (!YamlReader::present(planes)) {
-    if (morris) {
+    if (morris && !geometry) {  // walls made by geometry carry their own tangent planes
       r.error(planes,
               "missing; wall_model morris needs the wall surface of each wall region: "
               "[{region, point, normal}] or [{region, center, radius}] (docs/scene-format.md)");
@@ -430,7 +431,7 @@ void read_fluid(SceneContext& ctx, const Field& root) {
     fl.wall_model = spec->capabilities.wall_models.front();
     if (auto w = r.choice(f, "wall_model", models, false, "wall model")) fl.wall_model = *w;
   }
-  if (spec) read_wall_planes(ctx, f);
+  if (spec) read_wall_planes(ctx, f, YamlReader::present(YamlReader::child(root, "geometry")));
   read_parameters(ctx, f, spec);
   read_boussinesq(ctx, f);
   read_open_boundary(ctx, f, !spec || spec->capabilities.open_boundaries);

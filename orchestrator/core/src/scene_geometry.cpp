@@ -191,13 +191,6 @@ void read_geometry(SceneContext& ctx, const Field& root) {
     b.surface_id = b.role == "region" ? -1 : static_cast<int>(i) + 1;
     bodies.push_back(std::move(b));
   }
-  // Morris walls need their wall surfaces as planes or circles; geometry walls have none.
-  if (s.fluid.wall_model == "morris" && s.fluid.wall_planes.empty()) {
-    r.error(YamlReader::child(YamlReader::child(root, "fluid"), "wall_model"),
-            "'morris' is not available for walls made by 'geometry' (their surfaces may be "
-            "curved); allowed: 'stationary' (the default), or 'morris' with fluid.wall_planes "
-            "naming a plane or circle per wall region");
-  }
   if (!dx || !(h > 0) || r.diag().size() != errors_before) return;
   // Periodic axes: the lattice must tile the box.
   const double cell_x = lattice == g::Lattice::kCubic ? *dx
@@ -357,6 +350,7 @@ void read_geometry(SceneContext& ctx, const Field& root) {
   ps.ids.resize(n);
   report->surface_id = p.surface_id;
   report->surface_distance = p.distance;
+  report->surface_normal.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     ps.positions[3 * i] = p.position[i].x;
     ps.positions[3 * i + 1] = p.position[i].y;
@@ -364,6 +358,7 @@ void read_geometry(SceneContext& ctx, const Field& root) {
     ps.masses[i] = p.mass[i];
     ps.kinds[i] = p.kind[i] == g::Kind::kWall ? ParticleKind::kWall : ParticleKind::kFluid;
     ps.ids[i] = i;
+    report->surface_normal[i] = {p.normal[i].x, p.normal[i].y, p.normal[i].z};
     if (p.kind[i] == g::Kind::kFluid) report->fluid_volume += p.volume[i];
   }
   // Regions: the scene's own, then each body's and its layers.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <set>
 #include <string>
@@ -161,6 +162,17 @@ void Model::validate() const {
                        "scaled edges would reach the free species too)");
     }
   }
+  if (!morris_tangents.empty()) {
+    for (auto& p : morris_tangents.problems(SIZE_MAX)) issues.push_back("morris_" + p);
+    if (!morris_walls.empty()) {
+      issues.push_back(
+          "morris_tangents: not together with morris_walls (one wall surface per "
+          "wall particle)");
+    }
+    if (!free_walls.empty()) {
+      issues.push_back("morris_tangents: Morris walls together with free_walls are not supported");
+    }
+  }
   for (const auto& p : checks.list()) issues.push_back(p.message());
   if (issues.empty()) return;
   std::string msg = "invalid ssa model: ";
@@ -268,6 +280,12 @@ std::uint64_t Model::fingerprint() const {
       f.pod(w.surface.inward_normal);
       f.pod(w.surface.radius);
     }
+  }
+  if (!morris_tangents.empty()) {  // absent when unused: old fingerprints stay valid
+    f.pod(-5);
+    for (auto v : morris_tangents.particles) f.pod(v);
+    for (auto v : morris_tangents.depths) f.pod(v);
+    for (auto v : morris_tangents.normals) f.pod(v);
   }
   return f.h;
 }

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "sadr/common/periodic.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/common/wall_surface.hpp"
 
@@ -22,6 +23,17 @@ std::vector<std::int32_t> assign_morris_walls(const Model& model, const Diffusio
       if (g.is_wall[v]) surface[v] = static_cast<std::int32_t>(k);
     }
   }
+  const auto offset = model.morris_walls.size();
+  const WallTangents& t = model.morris_tangents;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const std::uint32_t v = t.particles[k];
+    if (v >= n) {
+      throw InvalidArgument("morris_tangents[" + std::to_string(k) + "].particle = " +
+                                std::to_string(v) + " (allowed: 0.." + std::to_string(n - 1) + ")",
+                            {{"field", "morris_tangents.particles"}, {"value", std::to_string(v)}});
+    }
+    if (g.is_wall[v]) surface[v] = static_cast<std::int32_t>(offset + k);
+  }
   return surface;
 }
 
@@ -29,8 +41,22 @@ void apply_morris_walls(DiffusionGraph& g, const Model& model, const ParticleSta
                         const std::vector<std::int32_t>& surface) {
   const double h = model.smoothing_length;
   const double* x = particles.positions.data();
+  const auto n_surfaces = static_cast<std::int32_t>(model.morris_walls.size());
+  const Box& box = model.box;
   auto beta = [&](std::uint32_t fluid, std::uint32_t wall) {
-    const WallSurface& s = model.morris_walls[static_cast<std::size_t>(surface[wall])].surface;
+    const std::int32_t w = surface[wall];
+    if (w >= n_surfaces) {  // the wall voxel's own tangent plane, from the minimum image
+      const auto k = static_cast<std::size_t>(w - n_surfaces);
+      double r[3] = {0, 0, 0};
+      for (int a = 0; a < box.dimension; ++a) {
+        const auto ua = static_cast<std::size_t>(a);
+        r[ua] = x[3 * std::size_t{fluid} + ua] - x[3 * std::size_t{wall} + ua];
+        if (box.periodic[ua]) r[ua] = minimum_image(r[ua], box.length(a));
+      }
+      const WallTangents& t = model.morris_tangents;
+      return morris_beta(t.depths[k], t.signed_distance(k, r), h);
+    }
+    const WallSurface& s = model.morris_walls[static_cast<std::size_t>(w)].surface;
     return morris_beta(s.depth(x + 3 * std::size_t{wall}),
                        s.signed_distance(x + 3 * std::size_t{fluid}), h);
   };

@@ -81,7 +81,7 @@ bool RdmeState::update_graph(const ParticleState& particles) {
     }
   }
   builder_.build(graph_, model_, particles);  // validates before writing
-  if (!model_.morris_walls.empty()) {
+  if (!model_.morris_walls.empty() || !model_.morris_tangents.empty()) {
     apply_morris_walls(graph_, model_, particles, assign_morris_walls(model_, graph_));
   }
   // The external laws' inputs survive a rebuild (zeros, t = 0 until the first set_inputs).

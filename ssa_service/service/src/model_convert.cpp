@@ -125,6 +125,9 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
     m.morris_walls.push_back(
         MorrisWall{wire::region_particles(regions, p.region(), here), wire::from_proto(p, here)});
   }
+  if (in.has_wall_tangents()) {
+    m.morris_tangents = wire::from_proto(in.wall_tangents(), n_particles, where + ".wall_tangents");
+  }
   m.frozen_species.assign(in.frozen_species().begin(), in.frozen_species().end());
   m.validate();
   return m;

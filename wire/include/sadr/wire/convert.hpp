@@ -43,6 +43,11 @@ InflowBox from_proto(const common::v1::InflowBuffer& in, int dimension, std::str
 /// normal 3 values each or empty (then 0 and +x), radius finite and >= 0; errors name `where`.
 WallSurface from_proto(const common::v1::WallPlane& in, std::string_view where);
 
+/// Per-particle wall surfaces (sadr.common.v1.WallTangents). from_proto checks them against the
+/// particle count n (WallTangents::problems); errors name `where`.
+void to_proto(const WallTangents& in, common::v1::WallTangents& out);
+WallTangents from_proto(const common::v1::WallTangents& in, std::size_t n, std::string_view where);
+
 /// Copies the arrays; velocities only if `with_velocities` and present.
 void to_proto(const ParticleState& in, common::v1::ParticleState& out, bool with_velocities = true);
 /// Checks lengths, finiteness, positivity (ParticleState::validate) and kind values.

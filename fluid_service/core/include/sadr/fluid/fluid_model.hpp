@@ -63,7 +63,8 @@ enum class WallModel {
   kMorrisExtrapolated,  ///< Morris, Fox & Zhu 1997: in the viscous term of a fluid-wall pair the
                         ///< wall velocity is -(d_j/d_i) v_i, i.e. v_ij = beta v_i with
                         ///< beta = min(1.5, 1 + d_j/d_i), d = distance to the region's wall
-                        ///< surface (plane, circle or sphere)
+                        ///< surface (plane, circle or sphere), or to the wall particle's own
+                        ///< tangent plane (FluidModel::wall_tangents)
 };
 
 /// One chemical species carried by the particles.
@@ -183,6 +184,9 @@ struct FluidModel {
   /// The backend's file parameters by name (absolute paths; the backend reads and checks them).
   std::map<std::string, std::string> backend_files;
   std::vector<WallRegion> wall_regions;
+  /// kMorrisExtrapolated with walls made by a scene's geometry: the tangent plane of every wall
+  /// particle (common/wall_surface.hpp); then the regions' surfaces are not used. Empty: none.
+  WallTangents wall_tangents;
   OpenBoundary open_boundary{};
 
   /// Throws InvalidArgument naming every offending field with value and allowed range.

@@ -5,7 +5,10 @@
 ///  - fluid particles inside walls: past a wall surface of fluid.wall_planes (a plane counts only
 ///    within h of a wall particle of its region), or, for wall particles without a surface,
 ///    closer than half a lattice spacing to one (the lattice fill puts the wall surface half a
-///    spacing in front of the first wall layer, so such a particle is past it);
+///    spacing in front of the first wall layer, so such a particle is past it); with Morris
+///    walls made by the geometry (scene_wall_tangents), past the tangent plane of the wall
+///    particle within h whose closest surface point is nearest, by more than
+///    kHealthTangentSlack dx (the plane departs from a curved surface by about dx^2 / (4 R));
 ///  - empty holes: connected empty cells of a grid of cell size >= h (the kernel support) that do
 ///    not reach the edge of the particles' extent and that mostly border cells holding fluid;
 ///  - the density deviation |rho/rho0 - 1| over fluid particles (max and RMS);
@@ -34,6 +37,9 @@ struct Scene;
 
 /// WARNING: a fluid particle is inside a wall at some checked frame.
 inline constexpr std::size_t kHealthPenetrationWarn = 1;
+/// Morris walls made by the geometry: a fluid particle counts as inside a wall when it lies
+/// past its wall particle's tangent plane by more than this many lattice spacings.
+inline constexpr double kHealthTangentSlack = 0.1;
 /// WARNING: an empty hole at some checked frame.
 inline constexpr std::size_t kHealthHoleWarn = 1;
 /// WARNING: max |rho/rho0 - 1| over fluid particles and checked frames above this.
@@ -63,6 +69,8 @@ struct HealthContext {
     std::vector<std::uint64_t> wall_ids;  ///< ids of the region's wall particles
   };
   std::vector<Surface> surfaces;  ///< fluid.wall_planes
+  /// Morris walls made by the geometry: the wall particles' tangent planes, by particle id.
+  WallTangents tangents;
   /// Per species of the scene: what can change its total.
   struct SpeciesInfo {
     std::string name;

@@ -94,6 +94,9 @@ struct GeometryReport {
   std::vector<int> surface_id;
   /// Per particle: depth behind the surface (walls) or distance to it (fluid), +inf if none.
   std::vector<double> surface_distance;
+  /// Per particle: the unit normal of a wall particle's surface pointing into the fluid (its
+  /// closest surface point is x + surface_distance * normal); (0, 0, 0) for fluid particles.
+  std::vector<std::array<double, 3>> surface_normal;
   /// Per particle: n_i / n_ref - 1 after relaxation (Wendland C2 number density against the
   /// ideal lattice's); empty when the section does not relax.
   std::vector<double> density_error;

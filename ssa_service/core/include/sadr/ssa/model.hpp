@@ -120,6 +120,10 @@ struct Model {
   std::vector<NeumannSource> neumann;
   std::vector<FreeWall> free_walls;      ///< walls that are ordinary voxels for a species
   std::vector<MorrisWall> morris_walls;  ///< extrapolated Dirichlet walls (empty: off)
+  /// The same with walls made by a scene's geometry: every listed wall voxel lies behind its own
+  /// tangent plane (common/wall_surface.hpp WallTangents; d_i from the minimum-image
+  /// displacement of i from the wall voxel). Not together with morris_walls. Empty: off.
+  WallTangents morris_tangents;
   /// Hybrid reactions (docs/method.md section 4c): deterministic species the rate
   /// laws read, not simulated; their concentrations are inputs held constant over
   /// each advance (NsmSolver::set_inputs). Law species index ns + k is frozen_species[k].
