@@ -7,7 +7,9 @@
 // lambda = sqrt(D / k),
 //     c(r) = j lambda K0(r / lambda) / (D K1(R / lambda)).
 // (3D, for a sphere: c(r) = j R^2 exp(-(r - R) / lambda) / (D r (1 + R / lambda)).)
-// The box [-4, 4]^2 with R = lambda = 0.5 is infinite to K0(8) / K0(1) = 3.5e-4.
+// The box [-4, 4]^2 with R = lambda = 0.5 is infinite to K0(8) / K0(1) = 3.5e-4. No
+// regularisation of the Laplacian (diffusion_eps and the SSA's regularization 0): it would
+// shift the profile by O(eps).
 //
 // Checked:
 //  - the amount: with uniform decay, the total obeys dN/dt = j A - k N whatever the diffusion,
@@ -44,11 +46,14 @@ dimension: 2
 box: {lower: [-4.0, -4.0], upper: [4.0, 4.0]}
 geometry:
   spacing: )yaml";
-  text += std::to_string(dx);
+  char spacing[32];
+  std::snprintf(spacing, sizeof spacing, "%.12g", dx);
+  text += spacing;
   text += R"yaml(
   bodies:
     - {name: cell, role: solid, shape: {type: disk, center: [0.0, 0.0], radius: 0.5}}
-fluid: {backend: static, h_over_dx: 2.0}
+fluid: {backend: static, h_over_dx: 2.0, parameters: {diffusion_eps: 0}}
+ssa: {regularization: 0}
 species:
   - {name: C, stochastic: false, diffusivity: 0.25}
 reactions:
@@ -134,8 +139,8 @@ TEST(SurfaceFluxE2e, DiskReleasesJATimesTheAreaAndTheSsaMeanIsTheGraphsSteadySta
   std::printf("disk dx = 0.1: amount error %.2g; |C - c(r)| / c(R): max %.3g, RMS %.3g\n",
               p.amount_rel, p.max_rel, p.rms_rel);
   EXPECT_LT(p.amount_rel, 1e-6);
-  EXPECT_LT(p.max_rel, 0.1);
-  EXPECT_LT(p.rms_rel, 0.02);
+  EXPECT_LT(p.max_rel, 0.08);   // measured 0.056, in the first layer
+  EXPECT_LT(p.rms_rel, 0.005);  // measured 0.0031
   // Stochastic: the total over the realizations, and per radial bin of width 0.25.
   const auto& x = f0.column("x");
   const auto& y = f0.column("y");
@@ -204,8 +209,9 @@ TEST(SurfaceFluxValidation, DiskProfileConvergesToTheBesselSolution) {
       std::log(rms[1] / rms[2]) / std::log(1.5));
   EXPECT_LT(err[1], err[0]);
   EXPECT_LT(err[2], err[1]);
-  EXPECT_LT(rms[2], rms[0]);
-  EXPECT_LT(rms[2], 0.004);
+  EXPECT_LT(rms[2], 0.6 * rms[0]);  // measured 0.30
+  EXPECT_LT(err[2], 0.045);         // measured 0.032
+  EXPECT_LT(rms[2], 0.0015);        // measured 0.00093
 }
 #endif
 
