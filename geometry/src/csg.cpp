@@ -35,6 +35,7 @@ class Translated final : public Shape {
     return {b.lo + t_, b.hi + t_};
   }
   std::optional<double> exact_volume() const override { return s_->exact_volume(); }
+  std::optional<double> exact_area() const override { return s_->exact_area(); }
 
  private:
   ShapePtr s_;
@@ -61,6 +62,7 @@ class Rotated final : public Shape {
     return transformed_bounds(s_->bounds(), dimension(), [&](Vec3 v) { return fwd(v); });
   }
   std::optional<double> exact_volume() const override { return s_->exact_volume(); }
+  std::optional<double> exact_area() const override { return s_->exact_area(); }
 
  private:
   Vec3 fwd(Vec3 v) const { return {dot(r_[0], v), dot(r_[1], v), dot(r_[2], v)}; }
@@ -99,6 +101,13 @@ class Scaled final : public Shape {
     const auto v = s_->exact_volume();
     if (!v) return v;
     return *v * f_.x * f_.y * f_.z;
+  }
+  /// Uniform scaling only: s^(d-1) times the child's.
+  std::optional<double> exact_area() const override {
+    const auto a = s_->exact_area();
+    const bool uniform = f_.x == f_.y && (dimension() == 2 || f_.y == f_.z);
+    if (!a || !uniform) return std::nullopt;
+    return dimension() == 2 ? *a * f_.x : *a * f_.x * f_.x;
   }
 
  private:

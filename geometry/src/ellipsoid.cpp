@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "sadr/geometry/shape.hpp"
 #include "shape_util.hpp"
@@ -89,6 +90,76 @@ std::array<double, 3> closest3(const std::array<double, 3>& e, const std::array<
   return {x[0], x[1], 0};
 }
 
+/// Trapezoid rule over one period of a smooth periodic f, doubling the points until two
+/// estimates agree to round-off (it converges geometrically for an analytic f).
+double periodic_integral(auto&& f) {
+  constexpr double two_pi = 2 * std::numbers::pi;
+  double prev = 0;
+  for (int n = 32; n <= (1 << 22); n *= 2) {
+    double sum = 0;
+    for (int k = 0; k < n; ++k) sum += f(two_pi * k / n);
+    const double est = sum * two_pi / n;
+    if (n > 32 && std::abs(est - prev) <= 1e-14 * std::abs(est)) return est;
+    prev = est;
+  }
+  return prev;
+}
+
+/// Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n from the Chebyshev guesses).
+void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
+  x.assign(static_cast<std::size_t>(n), 0.0);
+  w.assign(static_cast<std::size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    double z = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
+    double dp = 1;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = z;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (z * p1 - p0) / (z * z - 1);
+      const double dz = p1 / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-16) break;
+    }
+    x[static_cast<std::size_t>(i)] = z;
+    w[static_cast<std::size_t>(i)] = 2 / ((1 - z * z) * dp * dp);
+  }
+}
+
+/// Ellipse perimeter: the integral of |r'(t)| = sqrt(a^2 sin^2 t + b^2 cos^2 t) over a period.
+double ellipse_perimeter(double a, double b) {
+  return periodic_integral([&](double t) {
+    const double s = std::sin(t), c = std::cos(t);
+    return std::sqrt(a * a * s * s + b * b * c * c);
+  });
+}
+
+/// Ellipsoid area over (u, phi), r = (a s cos phi, b s sin phi, c u), s = sqrt(1 - u^2):
+/// |r_u x r_phi| = sqrt(s^2 c^2 (b^2 cos^2 phi + a^2 sin^2 phi) + a^2 b^2 u^2), smooth on
+/// [-1, 1] x period; Gauss-Legendre in u (doubling until round-off), trapezoid in phi.
+double ellipsoid_area(double a, double b, double c) {
+  double prev = 0;
+  std::vector<double> x, w;
+  for (int n = 16; n <= 4096; n *= 2) {
+    gauss_legendre(n, x, w);
+    double est = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double u = x[i], s2 = 1 - u * u;
+      est += w[i] * periodic_integral([&](double ph) {
+               const double cp = std::cos(ph), sp = std::sin(ph);
+               return std::sqrt(s2 * c * c * (b * b * cp * cp + a * a * sp * sp) +
+                                a * a * b * b * u * u);
+             });
+    }
+    if (n > 16 && std::abs(est - prev) <= 1e-13 * std::abs(est)) return est;
+    prev = est;
+  }
+  return prev;
+}
+
 class Ellipsoid final : public Shape {
  public:
   Ellipsoid(Vec3 c, Vec3 radii, int dim) : c_(c), radii_(radii), dim_(dim) {
@@ -121,6 +192,10 @@ class Ellipsoid final : public Shape {
   std::optional<double> exact_volume() const override {
     constexpr double pi = std::numbers::pi;
     return dim_ == 2 ? pi * radii_.x * radii_.y : 4.0 / 3.0 * pi * radii_.x * radii_.y * radii_.z;
+  }
+  std::optional<double> exact_area() const override {
+    return dim_ == 2 ? ellipse_perimeter(radii_.x, radii_.y)
+                     : ellipsoid_area(radii_.x, radii_.y, radii_.z);
   }
 
  private:

@@ -73,6 +73,15 @@ MeshShape::MeshShape(SurfaceMesh mesh, MeshShapeOptions options)
   bvh_ = std::make_unique<Bvh>(mesh_.dimension, std::move(elems), opt_.leaf_size);
 }
 
+std::optional<double> MeshShape::exact_area() const {
+  const auto& v = mesh_.vertices;
+  double a = 0;
+  for (const auto& t : mesh_.triangles)
+    a += 0.5 * norm(cross(v[t[1]] - v[t[0]], v[t[2]] - v[t[0]]));
+  for (const auto& s : mesh_.segments) a += norm(v[s[1]] - v[s[0]]);
+  return a;
+}
+
 MeshShape::~MeshShape() = default;
 
 double MeshShape::winding_number(Vec3 p) const {

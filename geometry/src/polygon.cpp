@@ -20,6 +20,8 @@ class Polygon final : public Shape {
       a += v_[j].x * v_[i].y - v_[i].x * v_[j].y;
     }
     area_ = 0.5 * std::abs(a);
+    for (std::size_t i = 0, j = v_.size() - 1; i < v_.size(); j = i++)
+      perimeter_ += norm(v_[i] - v_[j]);
   }
   int dimension() const override { return 2; }
   double signed_distance(Vec3 p) const override {
@@ -36,7 +38,9 @@ class Polygon final : public Shape {
   bool inside(Vec3 p) const override { return inside_even_odd(p); }
   Aabb bounds() const override { return box_; }
   std::optional<double> exact_volume() const override { return area_; }
+  std::optional<double> exact_area() const override { return perimeter_; }
   double area() const { return area_; }
+  double perimeter() const { return perimeter_; }
 
  private:
   Vec3 nearest(Vec3 p) const {
@@ -67,6 +71,7 @@ class Polygon final : public Shape {
   std::vector<Vec3> v_;
   Aabb box_;
   double area_ = 0;
+  double perimeter_ = 0;
 };
 
 class Extrusion final : public Shape {
@@ -85,6 +90,9 @@ class Extrusion final : public Shape {
     return b;
   }
   std::optional<double> exact_volume() const override { return poly_->area() * 2 * hz_; }
+  std::optional<double> exact_area() const override {
+    return poly_->perimeter() * 2 * hz_ + 2 * poly_->area();
+  }
 
  private:
   std::shared_ptr<const Polygon> poly_;

@@ -42,6 +42,10 @@ class Box final : public Shape {
   std::optional<double> exact_volume() const override {
     return dim_ == 2 ? 4 * half_.x * half_.y : 8 * half_.x * half_.y * half_.z;
   }
+  std::optional<double> exact_area() const override {
+    return dim_ == 2 ? 4 * (half_.x + half_.y)
+                     : 8 * (half_.x * half_.y + half_.y * half_.z + half_.z * half_.x);
+  }
 
  private:
   Vec3 c_, half_;
@@ -63,6 +67,9 @@ class Sphere final : public Shape {
   }
   std::optional<double> exact_volume() const override {
     return dim_ == 2 ? kPi * r_ * r_ : 4.0 / 3.0 * kPi * r_ * r_ * r_;
+  }
+  std::optional<double> exact_area() const override {
+    return dim_ == 2 ? 2 * kPi * r_ : 4 * kPi * r_ * r_;
   }
 
  private:
@@ -98,6 +105,9 @@ class Cylinder final : public Shape {
     return b.inflated(r_);
   }
   std::optional<double> exact_volume() const override { return kPi * r_ * r_ * norm(b_ - a_); }
+  std::optional<double> exact_area() const override {
+    return 2 * kPi * r_ * norm(b_ - a_) + 2 * kPi * r_ * r_;
+  }
 
  private:
   Vec3 a_, b_;
@@ -126,6 +136,10 @@ class Capsule final : public Shape {
     const double len = norm(b_ - a_);
     return dim_ == 2 ? 2 * r_ * len + kPi * r_ * r_
                      : kPi * r_ * r_ * len + 4.0 / 3.0 * kPi * r_ * r_ * r_;
+  }
+  std::optional<double> exact_area() const override {
+    const double len = norm(b_ - a_);
+    return dim_ == 2 ? 2 * len + 2 * kPi * r_ : 2 * kPi * r_ * len + 4 * kPi * r_ * r_;
   }
 
  private:
@@ -157,6 +171,7 @@ class Torus final : public Shape {
   std::optional<double> exact_volume() const override {
     return 2 * kPi * kPi * big_r_ * small_r_ * small_r_;
   }
+  std::optional<double> exact_area() const override { return 4 * kPi * kPi * big_r_ * small_r_; }
 
  private:
   /// p minus its nearest point on the ring.

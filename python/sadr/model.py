@@ -325,13 +325,15 @@ class Reaction(_Part):
 
 @dataclass
 class BoundaryFlux(_Part):
-    """A flux through a box face (``boundary_fluxes``) whose density is ``law``:
-    an influx of ``species``, or ``equation`` (reactants leave, products enter)."""
+    """A flux through a box face or the ``surface`` of a fluid or solid body of the geometry
+    (``boundary_fluxes``) whose density is ``law``: an influx of ``species``, or ``equation``
+    (reactants leave, products enter)."""
 
     name: str | None = None
     species: str | None = None
     equation: str | None = None
     face: str | None = None
+    surface: str | None = None
     region: str | None = None
     law: Law | None = None
     extra: dict = field(default_factory=dict)
@@ -539,12 +541,13 @@ class Model:
         self.reactions.append(r)
         return r
 
-    def add_boundary_flux(self, face: str, law: Law, *, species: str | None = None,
+    def add_boundary_flux(self, face: str | None, law: Law, *, species: str | None = None,
                           equation: str | None = None, region: str | None = None,
-                          name: str | None = None) -> BoundaryFlux:
-        """A flux through box face ``face`` (``x-`` ... ``z+``) with density ``law``."""
-        f = BoundaryFlux(name=name, species=species, equation=equation, face=face, region=region,
-                         law=law)
+                          name: str | None = None, surface: str | None = None) -> BoundaryFlux:
+        """A flux through box face ``face`` (``x-`` ... ``z+``) with density ``law``; or, with
+        ``face=None`` and ``surface``, through the surface of that fluid or solid body."""
+        f = BoundaryFlux(name=name, species=species, equation=equation, face=face,
+                         surface=surface, region=region, law=law)
         self.boundary_fluxes.append(f)
         return f
 

@@ -119,6 +119,19 @@ TEST(MeshShape, PolylineIn2D) {
   EXPECT_FALSE(mesh->inside({3.5, 1, 0}));
   EXPECT_NEAR(mesh->signed_distance({4, 1, 0}), 1, 1e-3);
   EXPECT_NEAR(mesh->enclosed_volume(), std::numbers::pi * 4, 0.01);
+  // 256 chords of a circle of radius 2: 256 * 2 * 2 sin(pi / 256).
+  EXPECT_NEAR(*mesh->exact_area(), 1024 * std::sin(std::numbers::pi / 256), 1e-12);
+}
+
+TEST(MeshShape, AreaIsTheTriangleSum) {
+  SurfaceMesh m;  // the corner tetrahedron: three right triangles and one equilateral
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  EXPECT_NEAR(*make_mesh_shape(m)->exact_area(), 1.5 + std::sqrt(3.0) / 2, 1e-14);
+  // A fine sphere mesh approaches 4 pi r^2 from below.
+  const double a = *make_mesh_shape(sphere_mesh({0, 0, 0}, 1, 48))->exact_area();
+  EXPECT_LT(a, 4 * std::numbers::pi);
+  EXPECT_GT(a, 0.99 * 4 * std::numbers::pi);
 }
 
 TEST(MeshIo, StlBinaryAndAsciiThroughGmsh) {

@@ -70,6 +70,39 @@ double brute_ellipsoid_distance(Vec3 r, Vec3 p, int n) {
   return best;
 }
 
+TEST(Shapes, ExactAreas) {
+  EXPECT_NEAR(*make_sphere({}, 2)->exact_area(), 16 * kPi, 1e-12);
+  EXPECT_NEAR(*make_sphere({}, 2, 2)->exact_area(), 4 * kPi, 1e-12);
+  EXPECT_NEAR(*make_box({0, 0, 0}, {2, 4, 6})->exact_area(), 88, 1e-12);
+  EXPECT_NEAR(*make_box({0, 0, 0}, {2, 4, 0}, 2)->exact_area(), 12, 1e-12);
+  EXPECT_NEAR(*make_cylinder({0, 0, 0}, {0, 0, 4}, 1)->exact_area(), 10 * kPi, 1e-12);
+  EXPECT_NEAR(*make_capsule({0, 0, 0}, {0, 0, 2}, 1)->exact_area(), 8 * kPi, 1e-12);
+  EXPECT_NEAR(*make_capsule({0, 0, 0}, {2, 0, 0}, 1, 2)->exact_area(), 4 + 2 * kPi, 1e-12);
+  EXPECT_NEAR(*make_torus({}, 3, 1)->exact_area(), 12 * kPi * kPi, 1e-12);
+  // Ellipse a = 2, b = 1: 8 E(sqrt(3)/2) = 9.68844822054767619... (complete elliptic integral).
+  EXPECT_NEAR(*make_ellipsoid({}, {2, 1, 0}, 2)->exact_area(), 9.688448220547676, 1e-12);
+  EXPECT_NEAR(*make_ellipsoid({}, {1.5, 1.5, 0}, 2)->exact_area(), 3 * kPi, 1e-12);
+  // Spheroids in closed form: oblate a = b = 2, c = 1 and prolate a = b = 1, c = 2.
+  const double eo = std::sqrt(0.75), ep = std::sqrt(0.75);
+  EXPECT_NEAR(*make_ellipsoid({}, {2, 2, 1})->exact_area(),
+              2 * kPi * 4 * (1 + (1 - eo * eo) / eo * std::atanh(eo)), 1e-11);
+  EXPECT_NEAR(*make_ellipsoid({}, {1, 1, 2})->exact_area(), 2 * kPi * (1 + 2 / ep * std::asin(ep)),
+              1e-11);
+  EXPECT_NEAR(*make_ellipsoid({}, {1, 2, 3})->exact_area(),
+              *make_ellipsoid({}, {3, 1, 2})->exact_area(), 1e-11);
+  EXPECT_NEAR(*make_polygon({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}})->exact_area(),
+              4 + 2 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(*make_extrusion({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}, 1, 4)->exact_area(),
+              3 * (4 + 2 * std::sqrt(2.0)) + 4, 1e-12);
+  EXPECT_NEAR(*scale(make_sphere({}, 1), {2, 2, 2})->exact_area(), 16 * kPi, 1e-12);
+  EXPECT_NEAR(*scale(make_sphere({}, 1, 2), {2, 2, 1})->exact_area(), 4 * kPi, 1e-12);
+  EXPECT_NEAR(
+      *rotate(translate(make_box({0, 0, 0}, {2, 4, 6}), {1, 2, 3}), {1, 1, 0}, 0.3)->exact_area(),
+      88, 1e-12);
+  EXPECT_FALSE(scale(make_sphere({}, 1), {1, 2, 3})->exact_area());
+  EXPECT_FALSE(csg_union({make_sphere({}, 1), make_sphere({1, 0, 0}, 1)})->exact_area());
+}
+
 TEST(Shapes, EllipsoidDistanceIsExact) {
   const Vec3 radii{3, 2, 1};
   const auto e = make_ellipsoid({}, radii);

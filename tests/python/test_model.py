@@ -151,6 +151,9 @@ def test_every_rate_law_validates():
                                         "catalyst": "E"}
     assert d["boundary_fluxes"][1] == {"equation": "P -> 0", "face": "y-", "region": "patch",
                                        "law": {"type": "expression", "expression": "0.8*P/(0.5+P)"}}
+    on_cell = sadr.Model().add_boundary_flux(None, sadr.Expression("q"), species="S", surface="cell")
+    assert on_cell.to_dict() == {"species": "S", "surface": "cell",
+                                 "law": {"type": "expression", "expression": "q"}}
     again = sadr.Model.from_dict(d)
     assert again.to_dict() == d and again.reactions[4].law == sadr.Hill(4, 0.5, 2, of="S")
     assert isinstance(again.reactions[0], Reaction) and isinstance(again.species[0], Species)

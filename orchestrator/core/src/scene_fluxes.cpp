@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Scene section "boundary_fluxes" (docs/scene-format.md): a Neumann flux whose density is a rate
-// law of the concentrations next to a box face, lowered to a reaction that fires only in the
-// first layer of fluid particles at the face, each with its share A_i of the face's area
-// (docs/method.md 4d).
+// law of the concentrations next to a box face or a surface of the geometry, lowered to a
+// reaction that fires only in the first layer of fluid particles there, each with its share A_i
+// of the face's or surface's area (docs/method.md 4d).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,9 +19,91 @@ namespace sadr::orchestrator::detail {
 
 namespace {
 
-constexpr std::array<std::string_view, 6> kFluxKeys{"name", "equation", "species",
-                                                    "face", "region",   "law"};
+constexpr std::array<std::string_view, 7> kFluxKeys{"name",    "equation", "species", "face",
+                                                    "surface", "region",   "law"};
 constexpr std::array<std::string_view, 6> kFaces{"x-", "x+", "y-", "y+", "z-", "z+"};
+
+void add_flux(SceneContext& ctx, const Field& f, std::set<std::string>& names, Reaction rx) {
+  if (!names.insert(rx.name).second) {
+    ctx.reader.error(YamlReader::child(f, "name"), "name '" + rx.name +
+                                                       "' is already used by a reaction or flux; "
+                                                       "names must be unique");
+  }
+  ctx.scene.reactions.push_back(std::move(rx));
+}
+
+/// `surface: <body>`: the first fluid layer next to a fluid or solid body of the geometry
+/// section and the shares of its area. False (an error said) when it cannot be made.
+bool read_surface_share(SceneContext& ctx, const Field& f, const Field& root,
+                        const std::string& name, Reaction& rx) {
+  YamlReader& r = ctx.reader;
+  const Field sf = YamlReader::child(f, "surface");
+  if (YamlReader::present(YamlReader::child(f, "region"))) {
+    r.error(YamlReader::child(f, "region"),
+            "'region' restricts a box face; with 'surface' the flux covers the whole surface "
+            "(allowed: 'region' with 'face' only)");
+    return false;
+  }
+  if (!YamlReader::present(YamlReader::child(root, "geometry"))) {
+    r.error(sf,
+            "'surface' names a fluid or solid body of the 'geometry' section, and the scene "
+            "has none; allowed: 'face' (a box face)");
+    return false;
+  }
+  if (!ctx.geometry_ok || !ctx.particles_ok || !ctx.scene.geometry) return false;
+  const GeometryReport& geo = *ctx.scene.geometry;
+  const GeometryBody* body = nullptr;
+  std::vector<std::string> own;
+  for (const auto& b : geo.bodies) {
+    if (b.name == name) body = &b;
+    if (b.role != "region") own.push_back(b.name);
+  }
+  const std::vector<std::string_view> allowed(own.begin(), own.end());
+  if (!body) {
+    std::string msg = "unknown surface '" + name + "'";
+    if (auto near = nearest_name(name, allowed)) msg += "; did you mean '" + *near + "'?";
+    r.error(sf, msg + " (allowed: the fluid and solid bodies of 'geometry': " +
+                    join_names(allowed) + ")");
+    return false;
+  }
+  if (body->role == "region") {
+    r.error(sf, "'" + name +
+                    "' is a region body, which has no surface (no walls); allowed: a "
+                    "fluid or solid body (" +
+                    join_names(allowed) + ")");
+    return false;
+  }
+  // The shape's own area when it gives one and nothing of it is cut off by the box.
+  std::optional<double> area;
+  if (body->exact_area && body->inside_box) area = body->exact_area;
+  try {
+    BoundaryShare s = surface_share(ctx.scene.particles, geo.surface_id, geo.surface_distance,
+                                    body->surface_id, geo.spacing, area);
+    if (area && !(s.layer_area > 0.5 * *area && s.layer_area < 2.0 * *area)) {
+      r.warning(sf, "the first fluid layer next to '" + name + "' covers about " +
+                        format_number(s.layer_area) + " of its area " + format_number(*area) +
+                        " (part of the surface lies inside another solid or outside the fluid "
+                        "body?); the flux uses the layer's estimate " +
+                        format_number(s.layer_area));
+      s = surface_share(ctx.scene.particles, geo.surface_id, geo.surface_distance, body->surface_id,
+                        geo.spacing, std::nullopt);
+    }
+    if (!area) {
+      r.warning(sf, std::string("the area of '") + name + "' is " +
+                        (body->exact_area ? "cut by the box" : "not known in closed form") +
+                        ": the flux uses its first fluid layer's estimate " +
+                        format_number(s.layer_area) +
+                        ", accurate to about a spacing over the surface's radius of curvature; "
+                        "for an exact area use a primitive or a mesh wholly inside the box");
+    }
+    rx.boundary_particles = std::move(s.particles);
+    rx.boundary_areas = std::move(s.areas);
+  } catch (const InvalidArgument& e) {
+    r.error(sf, "boundary flux '" + rx.name + "' on surface '" + name + "': " + e.what());
+    return false;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -97,6 +179,41 @@ BoundaryShare boundary_share(const ParticleState& p, const Box& box, int axis, b
   return s;
 }
 
+BoundaryShare surface_share(const ParticleState& p, std::span<const int> surface_id,
+                            std::span<const double> distance, int surface, double spacing,
+                            std::optional<double> area) {
+  const int d = p.dimension;
+  std::vector<std::uint32_t> cand;
+  double dmin = HUGE_VAL;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind(i) != ParticleKind::kFluid || surface_id[i] != surface) continue;
+    if (!std::isfinite(distance[i])) continue;
+    cand.push_back(static_cast<std::uint32_t>(i));
+    dmin = std::min(dmin, distance[i]);
+  }
+  if (cand.empty()) throw InvalidArgument("no fluid particle lies next to the surface");
+  const double limit = dmin + (1.0 - 1e-9) * spacing;
+  BoundaryShare s;
+  std::vector<double> w;
+  for (const auto i : cand) {
+    if (!(distance[i] < limit)) continue;
+    s.particles.push_back(i);
+    w.push_back(std::pow(p.volume(i), (d - 1.0) / d));  // l_i^(d-1)
+    s.layer_area += w.back();
+  }
+  s.area = area.value_or(s.layer_area);
+  double sum = 0;
+  for (const double wk : w) {
+    s.areas.push_back(s.area * wk / s.layer_area);
+    sum += s.areas.back();
+  }
+  if (!(std::fabs(sum - s.area) <= 1e-12 * s.area)) {
+    throw Error(StatusCode::kInternal, "surface shares sum to " + std::to_string(sum) +
+                                           " for an area of " + std::to_string(s.area));
+  }
+  return s;
+}
+
 }  // namespace sadr::orchestrator
 
 namespace sadr::orchestrator::detail {
@@ -135,14 +252,30 @@ void read_boundary_fluxes(SceneContext& ctx, const Field& root) {
     }
     const Field where = YamlReader::present(eqf) ? eqf : spf;
     const auto stochastic = check_reaction_species(ctx, where, rx);
-    const auto face = r.choice(f, "face", kFaces, true, "face");
+    const Field ff = YamlReader::child(f, "face");
+    const Field sf = YamlReader::child(f, "surface");
+    if (YamlReader::present(ff) && YamlReader::present(sf)) {
+      r.error(sf,
+              "give either 'face' (a box face, e.g. y-) or 'surface' (a fluid or solid body of "
+              "'geometry'), not both");
+      continue;
+    }
+    const bool on_surface = YamlReader::present(sf);
+    const auto face =
+        on_surface ? std::optional<std::string>{} : r.choice(f, "face", kFaces, false, "face");
+    const auto surface = on_surface ? r.string(f, "surface", true) : std::nullopt;
+    if (!on_surface && !YamlReader::present(ff)) {
+      r.error(f,
+              "missing 'face' or 'surface'; required: one of them: 'face' (x-, x+, y-, y+, z-, "
+              "z+: a box face) or 'surface' (the name of a fluid or solid body of 'geometry')");
+    }
     if (!YamlReader::present(YamlReader::child(f, "law"))) {
       r.error(f,
               "missing 'law': the flux density j [molecules/(length^(d-1) time)], e.g. "
               "{type: expression, expression: \"q\"}");
       continue;
     }
-    if (!stochastic || !face) continue;
+    if (!stochastic || (!face && !surface)) continue;
     rx.stochastic = *stochastic;
     read_law(ctx, f, rx);
     if (!*stochastic) {
@@ -155,8 +288,11 @@ void read_boundary_fluxes(SceneContext& ctx, const Field& root) {
         continue;
       }
     }
+    if (surface) {
+      if (read_surface_share(ctx, f, root, *surface, rx)) add_flux(ctx, f, names, std::move(rx));
+      continue;
+    }
     const int axis = (*face)[0] - 'x';
-    const Field ff = YamlReader::child(f, "face");
     if (!ctx.geometry_ok || !ctx.particles_ok) continue;
     if (axis >= ctx.scene.box.dimension) {
       r.error(ff, "face '" + *face + "' is not a face of a " +
@@ -190,11 +326,7 @@ void read_boundary_fluxes(SceneContext& ctx, const Field& root) {
           "boundary flux '" + rx.name + "' on face " + *face + ": " + e.what());
       continue;
     }
-    if (!names.insert(rx.name).second) {
-      r.error(YamlReader::child(f, "name"),
-              "name '" + rx.name + "' is already used by a reaction or flux; names must be unique");
-    }
-    ctx.scene.reactions.push_back(std::move(rx));
+    add_flux(ctx, f, names, std::move(rx));
   }
 }
 

@@ -371,6 +371,12 @@ void read_geometry(SceneContext& ctx, const Field& root) {
     info.surface_id = b.surface_id;
     info.origin = r.diag().file() + ":" + std::to_string(b.field.where.line);
     info.exact_volume = b.shape.shape->exact_volume();
+    info.exact_area = b.shape.shape->exact_area();
+    const g::Aabb sb = b.shape.shape->bounds();
+    info.inside_box = true;
+    for (int a = 0; a < d; ++a) {
+      info.inside_box = info.inside_box && sb.lo[a] > box.lo[a] && sb.hi[a] < box.hi[a];
+    }
     if (b.shape.plain_box) {
       const g::Aabb bb = b.shape.shape->bounds();
       double v = 1;

@@ -61,6 +61,8 @@ class MeshShape final : public Shape {
   /// winding_number(p) > 0.5.
   bool inside(Vec3 p) const override;
   Aabb bounds() const override { return box_; }
+  /// The sum of the triangle areas (3D) or segment lengths (2D).
+  std::optional<double> exact_area() const override;
 
   /// Generalized winding number at p (1 inside a closed outward surface, 0 outside).
   [[nodiscard]] double winding_number(Vec3 p) const;

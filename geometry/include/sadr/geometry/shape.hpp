@@ -46,6 +46,11 @@ class Shape {
   [[nodiscard]] virtual Aabb bounds() const = 0;
   /// Exact volume (area in 2D) where a closed formula exists; nullopt otherwise (CSG, meshes).
   [[nodiscard]] virtual std::optional<double> exact_volume() const { return std::nullopt; }
+  /// Area of the surface (its perimeter in 2D) where a closed formula or a quadrature to round-off
+  /// exists: every primitive (the ellipse's perimeter and the ellipsoid's area by quadrature),
+  /// their rigid transforms and uniform scaling; the element sum for meshes; nullopt otherwise
+  /// (CSG, non-uniform scaling).
+  [[nodiscard]] virtual std::optional<double> exact_area() const { return std::nullopt; }
 };
 
 using ShapePtr = std::shared_ptr<const Shape>;

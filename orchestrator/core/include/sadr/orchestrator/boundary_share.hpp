@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 /// \file boundary_share.hpp
 /// Where a boundary flux (scene `boundary_fluxes`) enters: the first layer of fluid particles at
-/// a box face and each one's share A_i of the face's area (docs/method.md 4d).
+/// a box face or at a surface of the scene's geometry, and each one's share A_i of the face's or
+/// surface's area (docs/method.md 4d).
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
@@ -16,6 +19,8 @@ struct BoundaryShare {
   std::vector<std::uint32_t> particles;  ///< the first fluid layer at the face, ascending
   std::vector<double> areas;             ///< A_i [length^(d-1)], parallel to particles
   double area = 0;                       ///< A: the face's area inside the region
+  /// Surfaces only: the layer's own estimate of the area, sum_i l_i^(d-1) [length^(d-1)].
+  double layer_area = 0;
 };
 
 /// The face is axis `axis`'s lower (`upper` false) or upper box face; `extent` (a box or channel
@@ -27,5 +32,17 @@ struct BoundaryShare {
 /// or no fluid particle on it.
 [[nodiscard]] BoundaryShare boundary_share(const ParticleState& particles, const Box& box, int axis,
                                            bool upper, const Region* extent, double tol);
+
+/// The first fluid layer next to surface `surface` of a geometry (GeometryReport::surface_id):
+/// candidates are the fluid particles whose nearest surface is that one (surface_id[i] ==
+/// surface, distance[i] finite); with d_min the smallest of their distances, the layer is those
+/// with distance[i] < d_min + (1 - 1e-9) `spacing` (a shell one lattice spacing thick, which
+/// holds exactly one lattice row next to a plane surface). A_i = A l_i^(d-1) / sum_j l_j^(d-1)
+/// (l_i = V_i^(1/d)); A is `area`, or without it the layer's estimate sum_j l_j^(d-1). Throws
+/// InvalidArgument when no fluid particle lies next to the surface.
+[[nodiscard]] BoundaryShare surface_share(const ParticleState& particles,
+                                          std::span<const int> surface_id,
+                                          std::span<const double> distance, int surface,
+                                          double spacing, std::optional<double> area);
 
 }  // namespace sadr::orchestrator

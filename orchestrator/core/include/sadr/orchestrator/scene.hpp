@@ -82,6 +82,9 @@ struct GeometryBody {
   int surface_id = -1;                   ///< fluid and solid bodies: the id their walls carry
   std::string origin;                    ///< "file:line" of the body
   std::optional<double> exact_volume{};  ///< of the shape (area in 2D), where a formula exists
+  /// Area of the shape's surface (perimeter in 2D) where the shape gives it (Shape::exact_area).
+  std::optional<double> exact_area{};
+  bool inside_box = false;  ///< the shape's bounds lie inside the box (no surface is cut off)
 };
 
 struct GeometryReport {
