@@ -3,46 +3,24 @@
 // here links libgmsh.
 #include "gmsh_dl.hpp"
 
-#include <dlfcn.h>
 #include <gmshc.h>
 
 #include <mutex>
 #include <stdexcept>
 
+#include "dl_library.hpp"
 #include "sadr/common/status.hpp"
 
 namespace sadr::geometry::gmsh_dl {
 namespace {
 
-void* library() {
-  static void* handle = nullptr;
-  static std::string error;
-  static std::once_flag once;
-  std::call_once(once, [] {
-    for (const char* name : {"libgmsh.so.4.8", "libgmsh.so"}) {
-      handle = ::dlopen(name, RTLD_NOW | RTLD_LOCAL);
-      if (handle) return;
-      const char* e = ::dlerror();
-      if (error.empty() && e) error = e;
-    }
-  });
-  if (!handle) {
-    throw InvalidArgument(
-        "reading a mesh needs the gmsh library (libgmsh.so.4.8; Debian: "
-        "libgmsh4.8), which cannot be loaded: " +
-        error);
-  }
-  return handle;
+DlLibrary& library() {
+  static DlLibrary lib({"libgmsh.so.4.8", "libgmsh.so"},
+                       "the gmsh library (libgmsh.so.4.8; Debian: libgmsh4.8)", "reading a mesh");
+  return lib;
 }
 
-template <class F>
-F* symbol(const char* name) {
-  void* s = ::dlsym(library(), name);
-  if (!s) throw InvalidArgument(std::string("the gmsh library has no function ") + name);
-  return reinterpret_cast<F*>(s);
-}
-
-#define SADR_GMSH(fn) symbol<decltype(fn)>(#fn)
+#define SADR_GMSH(fn) library().symbol<decltype(fn)>(#fn)
 
 std::string last_error() {
   char* text = nullptr;

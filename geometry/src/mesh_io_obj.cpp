@@ -3,8 +3,6 @@
 // OBJ read, like gmsh (gmsh_dl.cpp): a program that reads no OBJ file does not load it. The
 // headers give the types only; nothing here links libassimp. Polygons are triangulated by
 // assimp; each named object or group (`o` / `g`) is also a surface by its name.
-#include <dlfcn.h>
-
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -12,41 +10,21 @@
 #include <mutex>
 #include <string>
 
+#include "dl_library.hpp"
 #include "mesh_io_parts.hpp"
 #include "sadr/common/status.hpp"
 
 namespace sadr::geometry {
 namespace {
 
-void* assimp_library() {
-  static void* handle = nullptr;
-  static std::string error;
-  static std::once_flag once;
-  std::call_once(once, [] {
-    for (const char* name : {"libassimp.so.5", "libassimp.so"}) {
-      handle = ::dlopen(name, RTLD_NOW | RTLD_LOCAL);
-      if (handle) return;
-      const char* e = ::dlerror();
-      if (error.empty() && e) error = e;
-    }
-  });
-  if (!handle) {
-    throw InvalidArgument(
-        "reading an .obj file needs the assimp library (libassimp.so.5; Debian: libassimp5), "
-        "which cannot be loaded: " +
-        error);
-  }
-  return handle;
+DlLibrary& assimp() {
+  static DlLibrary lib({"libassimp.so.5", "libassimp.so"},
+                       "the assimp library (libassimp.so.5; Debian: libassimp5)",
+                       "reading an .obj file");
+  return lib;
 }
 
-template <class F>
-F* assimp_symbol(const char* name) {
-  void* s = ::dlsym(assimp_library(), name);
-  if (!s) throw InvalidArgument(std::string("the assimp library has no function ") + name);
-  return reinterpret_cast<F*>(s);
-}
-
-#define SADR_ASSIMP(fn) assimp_symbol<decltype(fn)>(#fn)
+#define SADR_ASSIMP(fn) assimp().symbol<decltype(fn)>(#fn)
 
 std::mutex& assimp_mutex() {
   static std::mutex m;
