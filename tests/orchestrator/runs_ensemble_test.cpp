@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "runs_test_support.hpp"
 #include "sadr/orchestrator/ensemble_manifest.hpp"
 #include "sadr/orchestrator/ensemble_pool.hpp"
 #include "sadr/orchestrator/reorder_buffer.hpp"
@@ -23,19 +24,9 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("sadr-runs-" + std::to_string(getpid()) + "-" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return runs_test::scratch("sadr-runs", name);
 }
-
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using runs_test::read_all;
 
 TEST(ReorderBuffer, OutOfOrderCompletionIsHandedOnInIndexOrder) {
   std::vector<std::pair<int, std::string>> seen;

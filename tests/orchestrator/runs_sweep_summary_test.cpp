@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "runs_test_support.hpp"
 #include "sadr/common/status.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
 #include "sadr/orchestrator/run_summary.hpp"
@@ -23,19 +24,9 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("sadr-runs2-" + std::to_string(getpid()) + "-" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return runs_test::scratch("sadr-runs2", name);
 }
-
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using runs_test::read_all;
 
 /// Frames 0 and 1 of 3 particles (density 2, mass 0.5: volume 0.25) with A = base + k.
 void write_frames(const fs::path& rd, double base) {
