@@ -41,7 +41,7 @@ Scene jittered(double tvf) {
   s.model.smoothing_length = kH;
   s.model.sound_speed = kC0;
   s.model.shear_viscosity = 0.5;
-  s.model.backend_parameters = {{"transport_velocity", tvf}, {"background_pressure", kPbFactor}};
+  s.model.backend_parameters = {{"transport_velocity", tvf}, {"shift_pressure", kPbFactor}};
   return s;
 }
 
@@ -131,7 +131,7 @@ TEST(SdpdTransportVelocity, OffGivesNoShiftAndTheSameRates) {
 
 TEST(SdpdTransportVelocity, RefusesValuesOutsideTheSchema) {
   for (const auto& [key, value] : std::vector<std::pair<std::string, double>>{
-           {"transport_velocity", 2.0}, {"background_pressure", -1.0}, {"tvf", 1.0}}) {
+           {"transport_velocity", 2.0}, {"shift_pressure", -1.0}, {"tvf", 1.0}}) {
     Scene s = jittered(1.0);
     s.model.backend_parameters[key] = value;
     SdpdBackend b;

@@ -46,19 +46,19 @@ void check_initial(const FluidModel& model, const ParticleState& s) {
 
 struct TransportVelocitySettings {
   bool on = false;
-  double background = 5.0;  ///< p_b / (rho_0 c_0^2)
+  double pressure = 5.0;  ///< p_b / (rho_0 c_0^2), the paper's background pressure
 };
 
 /// The backend's own parameters (sdpd_schema.cpp): transport_velocity (0 off, 1 on) and
-/// background_pressure; any other name is refused.
+/// shift_pressure; any other name is refused.
 TransportVelocitySettings transport_velocity_settings(const FluidModel& model) {
   TransportVelocitySettings t;
   for (const auto& [key, value] : model.backend_parameters) {
     if (key == "transport_velocity" && (value == 0.0 || value == 1.0)) {
       t.on = value == 1.0;
-    } else if (key == "background_pressure" && std::isfinite(value) && value >= 0.0) {
-      t.background = value;
-    } else if (key == "transport_velocity" || key == "background_pressure") {
+    } else if (key == "shift_pressure" && std::isfinite(value) && value >= 0.0) {
+      t.pressure = value;
+    } else if (key == "transport_velocity" || key == "shift_pressure") {
       throw InvalidArgument("sdpd: " + key + " = " + format_value(value) +
                             (key == "transport_velocity" ? " (allowed: 0 off, 1 on)"
                                                          : " (allowed: a finite number >= 0)"));
@@ -66,7 +66,7 @@ TransportVelocitySettings transport_velocity_settings(const FluidModel& model) {
       throw InvalidArgument("sdpd: unknown parameter '" + key +
                             "' (this backend takes none beyond density_diffusion, diffusion_eps, "
                             "density_band, neighbor_skin, transport_velocity, "
-                            "background_pressure)");
+                            "shift_pressure)");
     }
   }
   if (t.on && model.open_boundary.enabled) {
@@ -125,8 +125,8 @@ void SdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
   nlist_ = {};
   open_.setup(model, kernel_, pbox_, y_.x, wall_, kinds_);
   tvf_ = tvf.on;
-  tvf_background_pressure_ =
-      tvf.background * model.reference_density * model.sound_speed * model.sound_speed;
+  tvf_shift_pressure_ =
+      tvf.pressure * model.reference_density * model.sound_speed * model.sound_speed;
   half_ok_ = !tvf_ && !open_.enabled() && !morris_.enabled() && species_.transported().empty() &&
              !species_.has_reactions() &&
              std::none_of(wall_.begin(), wall_.end(), [](std::uint8_t w) { return w != 0; });

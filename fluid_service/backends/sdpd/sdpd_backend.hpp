@@ -273,10 +273,10 @@ class SdpdBackend final : public BackendBase {
   /// Half-pair path (no wall particles, no Morris walls, no transported species, no reactions):
   /// slabs along the last active axis, assigned at each list build.
   bool half_ok_ = false;
-  /// Transport-velocity formulation (parameters transport_velocity, background_pressure): on
+  /// Transport-velocity formulation (parameters transport_velocity, shift_pressure): on
   /// the full-list gather path only; p_b [pressure].
   bool tvf_ = false;
-  double tvf_background_pressure_ = 0;
+  double tvf_shift_pressure_ = 0;
   SlabScheduler slabs_;
   /// fused_substep: hin_ holds y_ (with the noise factor if temperature > 0), hacc_ is zero and
   /// y_moved_ tells whether y_.x has moved more than skin/2 since the list build. Cleared by

@@ -35,10 +35,10 @@ Backend sdpd_backend() {
        true,
        false,
        "on: the transport-velocity formulation (Adami, Hu & Adams 2013), particles move with "
-       "v + a background-pressure shift (docs/fluid-core.md)",
+       "v plus a shift from the uniform pressure shift_pressure (docs/fluid-core.md)",
        {"off", "on"}},
-      {"background_pressure", "dimensionless", 5.0, 0.0, inf, false, false,
-       "transport velocity: the background pressure p_b in units of rho_0 c_0^2"},
+      {"shift_pressure", "dimensionless", 5.0, 0.0, inf, false, false,
+       "transport velocity: the shift pressure p_b in units of rho_0 c_0^2"},
   };
   return b;
 }

@@ -2,15 +2,15 @@
 /// \file sdpd_transport_velocity.cpp
 /// The transport-velocity formulation (Adami, Hu & Adams 2013; docs/fluid-core.md): after the
 /// rates of a state are evaluated and the sub-step dt is known, two passes over the full lists
-/// (sdpd_pair_physics.hpp: background_factor, a_tensor_component):
+/// (sdpd_pair_physics.hpp: shift_factor, a_tensor_component):
 ///  1. the shift s_i = v~_i - v_i = (dt/2) (p_b/m_i) sum_j (V_i^2 + V_j^2) F_ij x_ij, the
-///     background-pressure push of the paper's kick-drift-kick (its half kick) in the
+///     shift-pressure push of the paper's kick-drift-kick (its half kick) in the
 ///     trapezoidal scheme: positions move with v + s, which displaces a particle by
 ///     dt^2/2 p_b-acceleration per sub-step as the paper's scheme does;
 ///  2. the A-tensor term (1/m_i) sum_j (V_i^2 + V_j^2) 1/2 (A_i + A_j) . grad_i W_ij with
 ///     A = rho v s, added to the deterministic acceleration.
 /// Wall particles get no shift and no A term (v = 0 there); as neighbours they push through
-/// the background pressure. Deterministic: the thermal noise stays on the momentum equation.
+/// the shift pressure. Deterministic: the thermal noise stays on the momentum equation.
 #include <cmath>
 
 #include "sadr/fluid/parallel.hpp"
@@ -24,7 +24,7 @@ void SdpdBackend::transport_velocity_terms(const Y& y, double dt, Rates& out) {
   const auto ni = static_cast<std::int64_t>(n);
   const double* x = y.x.data();
   out.shift.assign(3 * n, 0.0);
-  const double pb = tvf_background_pressure_;
+  const double pb = tvf_shift_pressure_;
 #pragma omp parallel for schedule(static) if (ni > kMinParallel)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -34,7 +34,7 @@ void SdpdBackend::transport_velocity_terms(const Y& y, double dt, Rates& out) {
     PairGeometry<D> g{};
     for (const std::uint32_t j : nlist_.of(i)) {
       if (!pair_geometry<D>(x, i, j, g)) continue;
-      const double fb = sdpd::background_factor(pb_vi2, pb * vol_[j] * vol_[j], g.f);
+      const double fb = sdpd::shift_factor(pb_vi2, pb * vol_[j] * vol_[j], g.f);
       for (int a = 0; a < D; ++a) push[a] += fb * g.x[a];
     }
     const double scale = 0.5 * dt / mass_[i];
