@@ -10,7 +10,8 @@ target_sources(sadr_fluid_backends PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_limits.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_open_boundary.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_pair_block.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/sdpd_restart.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_restart.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_transport_velocity.cpp)
 # The SIMD pair terms must be bit-identical in SIMD lanes and scalar remainders (momentum to
 # round-off): no FMA contraction in that file; sqrt without errno so the loop vectorises.
 set_source_files_properties(${CMAKE_CURRENT_LIST_DIR}/sdpd_pair_block.cpp

@@ -43,16 +43,45 @@ void check_initial(const FluidModel& model, const ParticleState& s) {
     }
   }
 }
+
+struct TransportVelocitySettings {
+  bool on = false;
+  double pressure = 5.0;  ///< p_b / (rho_0 c_0^2), the paper's background pressure
+};
+
+/// The backend's own parameters (sdpd_schema.cpp): transport_velocity (0 off, 1 on) and
+/// shift_pressure; any other name is refused.
+TransportVelocitySettings transport_velocity_settings(const FluidModel& model) {
+  TransportVelocitySettings t;
+  for (const auto& [key, value] : model.backend_parameters) {
+    if (key == "transport_velocity" && (value == 0.0 || value == 1.0)) {
+      t.on = value == 1.0;
+    } else if (key == "shift_pressure" && std::isfinite(value) && value >= 0.0) {
+      t.pressure = value;
+    } else if (key == "transport_velocity" || key == "shift_pressure") {
+      throw InvalidArgument("sdpd: " + key + " = " + format_value(value) +
+                            (key == "transport_velocity" ? " (allowed: 0 off, 1 on)"
+                                                         : " (allowed: a finite number >= 0)"));
+    } else {
+      throw InvalidArgument("sdpd: unknown parameter '" + key +
+                            "' (this backend takes none beyond density_diffusion, diffusion_eps, "
+                            "density_band, neighbor_skin, transport_velocity, "
+                            "shift_pressure)");
+    }
+  }
+  if (t.on && model.open_boundary.enabled) {
+    throw InvalidArgument(
+        "sdpd: transport_velocity = on is not available with an open boundary (the buffers "
+        "move with the velocity)");
+  }
+  return t;
+}
 }  // namespace
 
 void SdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
                         const std::vector<std::vector<double>>& concentrations) {
   check_initial(model, initial);
-  if (!model.backend_parameters.empty()) {
-    throw InvalidArgument("sdpd: unknown parameter '" + model.backend_parameters.begin()->first +
-                          "' (this backend takes none beyond density_diffusion, diffusion_eps, "
-                          "density_band, neighbor_skin)");
-  }
+  const TransportVelocitySettings tvf = transport_velocity_settings(model);
   if (!(model.sound_speed > 0)) {
     throw InvalidArgument("sdpd: sound_speed = " + format_value(model.sound_speed) +
                           " (must be > 0: the Tait equation of state needs c_0, at least 10x the "
@@ -95,7 +124,10 @@ void SdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
   list_ref_x_.clear();
   nlist_ = {};
   open_.setup(model, kernel_, pbox_, y_.x, wall_, kinds_);
-  half_ok_ = !open_.enabled() && !morris_.enabled() && species_.transported().empty() &&
+  tvf_ = tvf.on;
+  tvf_shift_pressure_ =
+      tvf.pressure * model.reference_density * model.sound_speed * model.sound_speed;
+  half_ok_ = !tvf_ && !open_.enabled() && !morris_.enabled() && species_.transported().empty() &&
              !species_.has_reactions() &&
              std::none_of(wall_.begin(), wall_.end(), [](std::uint8_t w) { return w != 0; });
   if (open_.enabled()) apply_open_boundary(0.0);  // (reaction sites follow the kinds it sets)
@@ -160,6 +192,11 @@ void SdpdBackend::evaluate_current(std::uint64_t noise_step, Rates& out) {
   evaluate(y_, noise_step, out, true);
 }
 
+void SdpdBackend::evaluate_current(std::uint64_t noise_step, double dt, Rates& out) {
+  evaluate_current(noise_step, out);
+  if (tvf_) apply_transport_velocity(y_, dt, out);
+}
+
 std::size_t SdpdBackend::memory_bytes() const {
   auto vb = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   auto yb = [&](const Y& y) {
@@ -168,7 +205,7 @@ std::size_t SdpdBackend::memory_bytes() const {
     return b;
   };
   auto rb = [&](const Rates& r) {
-    std::size_t b = vb(r.acc) + vb(r.acc_noise) + vb(r.drho);
+    std::size_t b = vb(r.acc) + vb(r.acc_noise) + vb(r.drho) + vb(r.shift);
     for (const auto& c : r.dc) b += vb(c);
     return b;
   };

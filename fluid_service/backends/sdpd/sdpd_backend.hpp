@@ -53,9 +53,16 @@ class SdpdBackend final : public BackendBase {
     std::vector<std::vector<double>> dc;  ///< [species][N] [C/time]
     double max_k_sum = 0;                 ///< max_i sum_j K_ij over fluid i [1/length^2]
     double max_visc_sum = 0;  ///< max_i (a + b)/rho_i sum_j V_j F_ij [1/(length^2)] / viscosity
+    /// Transport velocity only (else empty): s = v~ - v, 3N [length/time]; positions move
+    /// with v + s (sdpd_transport_velocity.cpp).
+    std::vector<double> shift;
   };
   /// Evaluates the rates at the current state with the noise of `noise_step` (testing aid).
   void evaluate_current(std::uint64_t noise_step, Rates& out);
+  /// The same with the transport-velocity terms of a sub-step dt (transport velocity on).
+  void evaluate_current(std::uint64_t noise_step, double dt, Rates& out);
+  /// Whether the transport-velocity formulation is on (parameter transport_velocity).
+  [[nodiscard]] bool transport_velocity() const { return tvf_; }
   /// Heap bytes held by the backend (state, scratch, neighbour list), for the benchmark.
   [[nodiscard]] std::size_t memory_bytes() const;
   /// Stability limits at the current state (evaluates the rates once, on a copy of the state
@@ -149,7 +156,27 @@ class SdpdBackend final : public BackendBase {
                     GatherSums<D>& s, Rates& out);
   /// Pair geometry of (i, j) at positions x; false if r >= h.
   template <int D>
-  bool pair_geometry(const double* x, std::size_t i, std::uint32_t j, PairGeometry<D>& g) const;
+  bool pair_geometry(const double* x, std::size_t i, std::uint32_t j, PairGeometry<D>& g) const {
+    double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
+    pbox_.minimum_image(d);
+    double r2 = 0;
+    for (int a = 0; a < D; ++a) {
+      g.x[a] = d[a];
+      r2 += d[a] * d[a];
+    }
+    const double h = kernel_.support();
+    if (r2 >= h * h) return false;
+    g.r2 = r2;
+    g.r = std::sqrt(r2);
+    g.f = kernel_.f(g.r);
+    g.inv_r2 = 1.0 / r2;
+    return true;
+  }
+  /// Transport velocity (sdpd_transport_velocity.cpp): out.shift and the A-tensor term of
+  /// out.acc at the state y whose rates `out` holds (pd2_, vol_ of y), for a sub-step dt.
+  void apply_transport_velocity(const Y& y, double dt, Rates& out);
+  template <int D>
+  void transport_velocity_terms(const Y& y, double dt, Rates& out);
   /// Wall-free, species-free systems: each pair evaluated once (sdpd_half_path.cpp).
   template <int D>
   void evaluate_half(Y& y, std::uint64_t noise_step, Rates& out, bool noise_on);
@@ -246,6 +273,10 @@ class SdpdBackend final : public BackendBase {
   /// Half-pair path (no wall particles, no Morris walls, no transported species, no reactions):
   /// slabs along the last active axis, assigned at each list build.
   bool half_ok_ = false;
+  /// Transport-velocity formulation (parameters transport_velocity, shift_pressure): on
+  /// the full-list gather path only; p_b [pressure].
+  bool tvf_ = false;
+  double tvf_shift_pressure_ = 0;
   SlabScheduler slabs_;
   /// fused_substep: hin_ holds y_ (with the noise factor if temperature > 0), hacc_ is zero and
   /// y_moved_ tells whether y_.x has moved more than skin/2 since the list build. Cleared by

@@ -33,25 +33,6 @@ struct SdpdBackend::GatherSums {
 };
 
 template <int D>
-bool SdpdBackend::pair_geometry(const double* x, std::size_t i, std::uint32_t j,
-                                PairGeometry<D>& g) const {
-  double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
-  pbox_.minimum_image(d);
-  double r2 = 0;
-  for (int a = 0; a < D; ++a) {
-    g.x[a] = d[a];
-    r2 += d[a] * d[a];
-  }
-  const double h = kernel_.support();
-  if (r2 >= h * h) return false;
-  g.r2 = r2;
-  g.r = std::sqrt(r2);
-  g.f = kernel_.f(g.r);
-  g.inv_r2 = 1.0 / r2;
-  return true;
-}
-
-template <int D>
 void SdpdBackend::summation_gather(Y& y) {
   // Summation density (docs/method.md), rho_i = m_i W(0) + sum_j m_j W_ij, replaces the
   // integrated one (fluid particles).

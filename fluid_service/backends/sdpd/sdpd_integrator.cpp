@@ -80,6 +80,9 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
   if (sub >= kMaxSubsteps) {
     throw_too_many_substeps(step_index, next.limit_name, next.limit);
   }
+  // Transport velocity: the shift v~ - v and the A-tensor term need dt (not in the limits).
+  const bool tvf = tvf_;
+  if (tvf) apply_transport_velocity(y_, dt, r0_);
   const double sdt = std::sqrt(dt);
   const bool noise_on = !r0_.acc_noise.empty();
   // Predictor: Y~ = Y + dt f(Y). One parallel pass (copy and update; serial copies limited
@@ -100,7 +103,7 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
     if (wall_[i]) continue;
     for (int a = 0; a < dim; ++a) {
       const std::size_t k = 3 * i + a;
-      ytmp_.x[k] += dt * y_.v[k];
+      ytmp_.x[k] += tvf ? dt * (y_.v[k] + r0_.shift[k]) : dt * y_.v[k];
       ytmp_.v[k] += dt * r0_.acc[k] + (noise_on ? sdt * r0_.acc_noise[k] : 0.0);
     }
     pbox_.wrap(&ytmp_.x[3 * i]);
@@ -112,7 +115,8 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
   }
   species_.set_time(time_ + dt);
   evaluate(ytmp_, key, r1_, false);  // noise: the start-of-step force is reused
-  // Corrector: Y = Y + dt/2 (f(Y) + f(Y~)), same noise increment.
+  if (tvf) apply_transport_velocity(ytmp_, dt, r1_);
+    // Corrector: Y = Y + dt/2 (f(Y) + f(Y~)), same noise increment.
 #pragma omp parallel for schedule(static) if (ni > kMinParallelLight)
   for (std::int64_t ii = 0; ii < ni; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -121,7 +125,8 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
     if (wall_[i]) continue;
     for (int a = 0; a < dim; ++a) {
       const std::size_t k = 3 * i + a;
-      y_.x[k] += 0.5 * dt * (y_.v[k] + ytmp_.v[k]);
+      y_.x[k] += tvf ? 0.5 * dt * ((y_.v[k] + r0_.shift[k]) + (ytmp_.v[k] + r1_.shift[k]))
+                     : 0.5 * dt * (y_.v[k] + ytmp_.v[k]);
       y_.v[k] += 0.5 * dt * (r0_.acc[k] + r1_.acc[k]) + (noise_on ? sdt * r0_.acc_noise[k] : 0.0);
     }
     pbox_.wrap(&y_.x[3 * i]);

@@ -53,6 +53,27 @@ inline double noise_amplitude(double noise_amp, double sqrt_f, double sqrt_inv_n
   return (noise_amp * sqrt_f) * (sqrt_inv_nd_i * sqrt_inv_nd_j);
 }
 
+/// Transport velocity (Adami, Hu & Adams 2013): the pair's term of the force of the uniform
+/// pressure p_b (the paper's background pressure; scene parameter shift_pressure) on i, p_b (V_i^2
+/// + V_j^2) F_ij x_ij = -p_b (V_i^2 + V_j^2) grad_i W_ij, the same form as the pressure term with
+/// P/d^2 = p_b V^2 on both sides (pressure_factor).
+/// @param pb_vi2 p_b V_i^2, @param pb_vj2 p_b V_j^2.
+inline double shift_factor(double pb_vi2, double pb_vj2, double f) {
+  return pressure_factor(pb_vi2, pb_vj2, f);
+}
+
+/// Component a of the pair's term of the A tensor in the momentum equation (Adami et al. 2013,
+/// momentum equation): (V_i^2 + V_j^2) 1/2 (A_i + A_j) . grad_i W_ij with A = rho v (v~ - v) (outer
+/// product) and grad_i W_ij = -F_ij x_ij, i.e. \f$ -\tfrac12 (V_i^2 + V_j^2) F_{ij} [\rho_i v_{i,a}
+/// (s_i\cdot x_{ij})
+///      + \rho_j v_{j,a} (s_j\cdot x_{ij})] \f$, s = v~ - v.
+/// @param half_vf (V_i^2 + V_j^2) F_ij / 2, @param rho_sx_i rho_i (s_i . x_ij),
+/// @param rho_sx_j rho_j (s_j . x_ij).
+inline double a_tensor_component(double half_vf, double vi, double rho_sx_i, double vj,
+                                 double rho_sx_j) {
+  return -half_vf * (vi * rho_sx_i + vj * rho_sx_j);
+}
+
 }  // namespace sadr::fluid::sdpd
 
 namespace sadr::fluid {

@@ -27,6 +27,18 @@ Backend sdpd_backend() {
        "blow-up band: |rho/rho_0 - 1| must stay below it"},
       {"neighbor_skin", "dimensionless", 0.15, 0.0, 1.0, false, false,
        "Verlet skin as a fraction of h"},
+      {"transport_velocity",
+       "-",
+       0,
+       0,
+       1,
+       true,
+       false,
+       "on: the transport-velocity formulation (Adami, Hu & Adams 2013), particles move with "
+       "v plus a shift from the uniform pressure shift_pressure (docs/fluid-core.md)",
+       {"off", "on"}},
+      {"shift_pressure", "dimensionless", 5.0, 0.0, inf, false, false,
+       "transport velocity: the shift pressure p_b in units of rho_0 c_0^2"},
   };
   return b;
 }
