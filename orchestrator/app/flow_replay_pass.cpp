@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Flow replay in an ensemble (flow_replay.hpp): the fluid-only pass that writes
 // OUTPUT/flow_replay.bin, and which realizations replay it.
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <thread>
 
 #include "commands.hpp"
 #include "sadr/common/log.hpp"
@@ -30,6 +33,17 @@ fs::path prepare_flow_replay(const Scene& scene, const Plan& plan, const Service
     }
     return path;
   }
+  // The pass runs alone: its fluid takes every core unless told otherwise (results do not
+  // depend on the thread count; the realizations keep theirs).
+  const bool own_threads = std::getenv("SADR_FLUID_THREADS") == nullptr;
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  if (own_threads) setenv("SADR_FLUID_THREADS", std::to_string(cores).c_str(), 1);
+  struct Unset {
+    bool on;
+    ~Unset() {
+      if (on) unsetenv("SADR_FLUID_THREADS");
+    }
+  } unset{own_threads};
   if (!o.quiet) std::fprintf(stderr, "sadr: flow replay: computing the fluid once\n");
   Plan fluid_only = plan;
   fluid_only.ssa_service = false;
