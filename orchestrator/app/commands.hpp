@@ -50,6 +50,18 @@ std::optional<FailedRealization> run_ensemble_member(const Scene& scene, const P
 int report_failed_realizations(const std::filesystem::path& dir,
                                const std::vector<FailedRealization>& failed);
 
+// Flow replay in an ensemble (flow_replay_pass.cpp).
+/// DIR/flow_replay.bin.
+std::filesystem::path flow_replay_path(const std::filesystem::path& dir);
+/// The flow replay file of the ensemble in `dir`: an existing one (its scene hash
+/// checked), else the fluid-only pass writes it. Returns "" when a stop was
+/// requested during the pass (nothing written).
+std::filesystem::path prepare_flow_replay(const Scene& scene, const Plan& plan,
+                                          const ServiceOptions& o,
+                                          const std::filesystem::path& dir);
+/// The realization in `realization_dir` has a checkpoint that replays the flow.
+bool checkpoint_replays_flow(const std::filesystem::path& realization_dir);
+
 // Checks and settings before a run (run_checks.cpp).
 /// OpenMP threads the fluid will use: --fluid-threads, else SADR_FLUID_THREADS,
 /// else OMP_NUM_THREADS (its first value), else every hardware thread.

@@ -24,6 +24,8 @@ int resume_ensemble(const ServiceOptions& o, const fs::path& dir) {
   }
   Plan plan = make_plan(scene);
   const int count = manifest.realizations;
+  decide_flow_replay(plan, o.no_flow_replay, count);
+  fs::path replay;  // prepared when the first realization needs it
   std::vector<FailedRealization> failed;
   int executed = 0;
   for (int r = 0; r < count && !interrupt_requested(); ++r) {
@@ -33,6 +35,14 @@ int resume_ensemble(const ServiceOptions& o, const fs::path& dir) {
     const bool resumed = fs::exists(rd / "checkpoint" / std::string(kCheckpointManifestName));
     RunOptions base;
     base.progress = false;
+    // Flow replay: a realization that replayed goes on replaying; one that stepped its
+    // fluid (its checkpoint holds the fluid's state) goes on stepping it.
+    const bool replays = checkpoint_replays_flow(rd) || (plan.flow_replay && !resumed);
+    if (replays && replay.empty()) {
+      replay = prepare_flow_replay(scene, plan, o, dir);
+      if (replay.empty()) break;  // stopped during the fluid pass
+    }
+    if (replays) base.flow_replay = replay;
     RunResult res;
     if (auto f = run_ensemble_member(scene, plan, o, r, rd, true, base, {}, res)) {
       std::fprintf(stderr, "sadr: realization %d failed: %s\n", r, f->reason.c_str());

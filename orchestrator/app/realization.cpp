@@ -67,7 +67,9 @@ RunResult run_realization(const Scene& scene, const Plan& plan, const ServiceOpt
   return run_with_restarts(
       policy, realization, out, scene.source_hash, resume,
       [&] {
-        return std::make_unique<ServiceSet>(o.mode, plan, o.remote, std::to_string(realization));
+        Plan launch = plan;  // a replayed flow needs no fluid_service
+        if (!base.flow_replay.empty()) launch.fluid_service = false;
+        return std::make_unique<ServiceSet>(o.mode, launch, o.remote, std::to_string(realization));
       },
       [&](std::unique_ptr<ServiceSet>& services, const LoadedCheckpoint* from) {
         RunOptions ro = base;

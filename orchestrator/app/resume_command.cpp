@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "sadr/orchestrator/checkpoint.hpp"
+#include "sadr/orchestrator/flow_replay.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
 #include "sadr/orchestrator/scene_override.hpp"
@@ -66,6 +67,14 @@ int cmd_resume(const ResumeCommandOptions& c) {
                  static_cast<unsigned long long>(cp.manifest.step_index), out.string().c_str());
   RunOptions base;
   base.progress = !o.quiet && !o.no_progress;
+  if (const auto f = cp.blobs.find("fluid");
+      f != cp.blobs.end() && is_flow_replay_snapshot(f->second.bytes)) {
+    base.flow_replay = flow_replay_path(run_dir.parent_path());  // one realization of an ensemble
+    if (!o.quiet) {
+      std::fprintf(stderr, "sadr: the realization replays the flow in %s\n",
+                   base.flow_replay.string().c_str());
+    }
+  }
   const RunResult r = run_realization(scene, plan, o, cp.manifest.realization, out, &cp, base);
   if (!r.interrupted) summarize_at_end(out, o.quiet);
   return r.interrupted && interrupt_requested() ? kExitInterrupted : kExitOk;
@@ -87,6 +96,7 @@ Subcommand add_resume_command(CLI::App& app) {
       ->check(CLI::ExistingPath);
   add_service_options(resume, o->service);
   add_retries_option(resume, o->service);
+  add_flow_replay_option(resume, o->service);
   return {resume, [o] {
             if (const int rc = resolve_service_mode(o->service); rc != kExitOk) return rc;
             use_remote_keys(o->service);

@@ -87,6 +87,7 @@ void prepare_output(const fs::path& dir, bool force) {
                             "another with --output)");
     }
     for (const auto& sub : {"frames", "checkpoint", "ensemble"}) fs::remove_all(dir / sub);
+    fs::remove(flow_replay_path(dir));  // recorded again: never the answers of an earlier run
   }
   ensure_directory(dir);
 }
@@ -103,6 +104,7 @@ int cmd_run(const RunCommandOptions& c) {
                        : 1;
   if (jobs > 1) setenv("OMP_NUM_THREADS", "1", 0);  // one core per realization
   configure_threads_and_overlap(plan, o, jobs);
+  decide_flow_replay(plan, o.no_flow_replay, c.realization.empty() ? r_count : 1);
   print_plan(scene, plan, o);
   check_stop_at(o, scene, 0.0);
   if (!c.realization.empty() && o.output.empty()) {
@@ -142,7 +144,17 @@ int cmd_run(const RunCommandOptions& c) {
     return kExitOk;
   }
 
-  // Ensemble: R realizations on `jobs` workers, each with its own services.
+  // Ensemble: R realizations on `jobs` workers, each with its own services; the
+  // fluid first, alone, when it is the same in all of them (flow replay).
+  fs::path replay;
+  if (plan.flow_replay) {
+    replay = prepare_flow_replay(scene, plan, o, out);
+    if (replay.empty()) {  // stopped during the fluid pass: `sadr resume` starts it again
+      EnsembleManifest::of(scene, r_count, o.retries, {}).write(out);
+      std::fprintf(stderr, "sadr: stopped; resume with: sadr resume %s\n", out.string().c_str());
+      return kExitInterrupted;
+    }
+  }
   EnsembleAccumulator ensemble(scene.output.species, scene.particles.size());
   const PoolResult pool =
       run_ensemble_pool(ensemble, r_count, jobs, o.quiet, interrupt_flag(), [&](int r) {
@@ -150,6 +162,7 @@ int cmd_run(const RunCommandOptions& c) {
         // Frames of this realization, added to the ensemble once it succeeds.
         RunOptions base;
         base.progress = false;
+        base.flow_replay = replay;
         base.on_frame = [&m](std::size_t k, double t, std::span<const SpeciesColumn> cols) {
           m.frames[k] = {t, std::vector<SpeciesColumn>(cols.begin(), cols.end())};
         };
@@ -192,6 +205,7 @@ Subcommand add_run_command(CLI::App& app) {
                   "combine with 'sadr ensemble OUTPUT')");
   add_service_options(run, o->service);
   add_retries_option(run, o->service);
+  add_flow_replay_option(run, o->service);
   return {run, [o] {
             if (const int rc = resolve_service_mode(o->service); rc != kExitOk) return rc;
             use_remote_keys(o->service);

@@ -39,8 +39,9 @@ struct ServiceOptions {
   bool allow_large = false;  ///< --allow-large: lift the soft limits of the work estimate
   /// --overlap / --no-overlap: SSA step k at the same time as fluid step k + 1.
   OverlapRequest overlap = OverlapRequest::kAuto;
-  int fluid_threads = 0;  ///< --fluid-threads (0 = OpenMP's default); SADR_FLUID_THREADS
-  int ssa_threads = 0;    ///< --ssa-threads (0 = OpenMP's default); SADR_SSA_THREADS
+  bool no_flow_replay = false;  ///< --no-flow-replay: every realization steps its fluid
+  int fluid_threads = 0;        ///< --fluid-threads (0 = OpenMP's default); SADR_FLUID_THREADS
+  int ssa_threads = 0;          ///< --ssa-threads (0 = OpenMP's default); SADR_SSA_THREADS
   std::string log_level = "info";
 };
 
@@ -48,6 +49,8 @@ struct ServiceOptions {
 void add_service_options(CLI::App* cmd, ServiceOptions& o);
 /// --retries N (run, resume).
 void add_retries_option(CLI::App* cmd, ServiceOptions& o);
+/// --no-flow-replay (run, resume).
+void add_flow_replay_option(CLI::App* cmd, ServiceOptions& o);
 /// After parsing: the log level, then the mode from --embedded and --fluid/--ssa.
 /// Returns kExitUsage (with a message) for --embedded with --fluid/--ssa, else kExitOk.
 int resolve_service_mode(ServiceOptions& o);

@@ -241,5 +241,54 @@ TEST(Plan, OverlapNeedsLieBothServicesNoBackTransferAndASpareCore) {
   EXPECT_EQ(pn.overlap_reason, "only one operator runs");
 }
 
+TEST(Plan, FlowReplayNeedsADeterministicFluidThatReadsNothingOfTheSsa) {
+  Scene s = moving_scene();
+  s.fluid.temperature = 0.0;
+  Plan p = make_plan(s);
+  ASSERT_TRUE(p.flow_replay_allowed) << p.flow_replay_reason;
+  EXPECT_FALSE(p.flow_replay);  // off until decided
+  decide_flow_replay(p, false, 20);
+  EXPECT_TRUE(p.flow_replay);
+  EXPECT_TRUE(mentions(p.lines(), "flow replay: on (the fluid is the same in every realization"));
+  EXPECT_EQ(p.to_json().at("flow_replay"), true);
+  decide_flow_replay(p, false, 1);
+  EXPECT_FALSE(p.flow_replay);
+  EXPECT_EQ(p.flow_replay_reason, "one realization");
+  decide_flow_replay(p, true, 20);
+  EXPECT_FALSE(p.flow_replay);
+  EXPECT_TRUE(mentions(p.lines(), "flow replay: off (--no-flow-replay)"));
+  EXPECT_EQ(p.to_json().at("flow_replay_reason"), "--no-flow-replay");
+
+  // Each reason it must be refused, whatever is asked.
+  auto refused = [](const Scene& scene, const std::string& why) {
+    Plan q = make_plan(scene);
+    EXPECT_FALSE(q.flow_replay_allowed) << why;
+    decide_flow_replay(q, false, 20);
+    EXPECT_FALSE(q.flow_replay) << why;
+    EXPECT_NE(q.flow_replay_reason.find(why), std::string::npos) << q.flow_replay_reason;
+  };
+  refused(moving_scene(), "thermal noise on");  // k_B T = 1
+  Scene fed_back = s;
+  fed_back.fluid.boussinesq = Boussinesq{"A", 1.0, 0.0, {0, 1, 0}};
+  refused(fed_back, "back-transfer ssa -> fluid: the fluid reads A");
+  Scene hybrid = s;  // a deterministic reaction whose law reads the stochastic A
+  Reaction rx;
+  rx.name = "fed";
+  rx.stochastic = false;
+  rx.reads_other = {"A"};
+  hybrid.reactions.push_back(rx);
+  refused(hybrid, "back-transfer ssa -> fluid: the fluid reads A");
+  Scene no_ssa = s;
+  no_ssa.species = {species("C", false)};
+  refused(no_ssa, "no stochastic species");
+  Scene frozen = s;  // the SSA reads the fluid: allowed (the fluid's answers are replayed)
+  Reaction sx;
+  sx.name = "reads_c";
+  sx.stochastic = true;
+  sx.reads_other = {"C"};
+  frozen.reactions.push_back(sx);
+  EXPECT_TRUE(make_plan(frozen).flow_replay_allowed) << make_plan(frozen).flow_replay_reason;
+}
+
 }  // namespace
 }  // namespace sadr::orchestrator

@@ -8,6 +8,7 @@
 
 #include "sadr/common/log.hpp"
 #include "sadr/orchestrator/checkpointing.hpp"
+#include "sadr/orchestrator/flow_replay.hpp"
 #include "sadr/orchestrator/frame_output.hpp"
 #include "sadr/orchestrator/progress.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
@@ -20,24 +21,6 @@
 namespace sadr::orchestrator {
 namespace {
 
-LoopSettings loop_settings(const Scene& scene, const Plan& plan, const RunOptions& options) {
-  LoopSettings s;
-  s.splitting = scene.time.splitting;
-  s.tau = scene.time.coupling_step;
-  s.t_end = scene.time.end;
-  s.output_times = scene.output.times;
-  s.checkpoint_every = scene.output.checkpoint_every;
-  s.stop_at = options.stop_at;
-  s.fluid_stepping = plan.fluid_stepping;
-  s.fluid_calls_per_step = plan.fluid_calls_per_step;
-  s.geometry_each_step = plan.particles_to_ssa_each_step;
-  if (plan.back_transfer) s.back_transfer = plan.back_transfer_species;
-  s.frozen = plan.frozen_species;
-  s.overlap = plan.overlap && plan.overlap_allowed;
-  s.frame_to_frame = plan.frame_to_frame;
-  return s;
-}
-
 class CoupledRun {
  public:
   CoupledRun(const Scene& scene, const Plan& plan, const ServiceEndpoints& endpoints,
@@ -47,7 +30,9 @@ class CoupledRun {
         options_(options),
         seed_(realization_seed(scene.seed, options.realization)) {
     const std::string run_id = scene_.source_hash + "/" + std::to_string(seed_);
-    if (plan_.fluid_service) {
+    if (!options.flow_replay.empty()) {
+      replay_.emplace(options.flow_replay, scene_meaning_hash(scene_, plan_));
+    } else if (plan_.fluid_service) {
       if (endpoints.fluid.empty()) throw FailedPrecondition("the plan needs fluid_service");
       fluid_.emplace(endpoints.fluid, options.timeout);
       if (options.liveness) fluid_->set_liveness_check(options.liveness);
@@ -74,7 +59,7 @@ class CoupledRun {
     manifest_.started_utc = utc_now_iso8601();
     manifest_.plan = plan_.to_json();
     frames_.emplace(scene_, options.output_dir, manifest_);
-    loop_.emplace(fluid(), ssa(), loop_settings(scene_, plan_, options_), manifest_);
+    loop_.emplace(fluid(), ssa(), loop_settings(), manifest_);
   }
 
   RunResult execute() {
@@ -117,7 +102,15 @@ class CoupledRun {
   }
 
  private:
-  FluidService* fluid() { return fluid_ ? &*fluid_ : nullptr; }
+  LoopSettings loop_settings() const {
+    LoopSettings s = make_loop_settings(scene_, plan_);
+    s.stop_at = options_.stop_at;
+    return s;
+  }
+  FluidService* fluid() {
+    if (replay_) return &*replay_;
+    return fluid_ ? &*fluid_ : nullptr;
+  }
   SsaService* ssa() { return ssa_ ? &*ssa_ : nullptr; }
 
   void init_services() {
@@ -136,6 +129,12 @@ class CoupledRun {
 
   void restore(const LoadedCheckpoint& cp) {
     ScopedTimer timer(manifest_.timings_s, "restore");
+    const auto blob = cp.blobs.find("fluid");
+    if (fluid_ && blob != cp.blobs.end() && is_flow_replay_snapshot(blob->second.bytes)) {
+      throw InvalidArgument(
+          "this checkpoint is of a realization that replays the flow of its ensemble "
+          "(flow_replay.bin in the ensemble's folder): resume the ensemble, sadr resume DIR");
+    }
     restore_checkpoint(cp, fluid(), ssa());
     loop_->resume_at(cp.manifest.time, cp.manifest.step_index);
     frames_->relist_until(loop_->time());
@@ -172,6 +171,7 @@ class CoupledRun {
   /// Per-step geometry fluid -> ssa: shared memory on this host, else inline.
   GeometryChannel geometry_;
   std::optional<FluidClient> fluid_;
+  std::optional<FlowReplay> replay_;  ///< instead of fluid_ (RunOptions::flow_replay)
   std::optional<SsaClient> ssa_;
   std::optional<FrameOutput> frames_;
   std::optional<SplittingLoop> loop_;  ///< after the clients it calls: destroyed first

@@ -17,15 +17,9 @@ std::string frame_name(std::size_t index, const char* ext) {
   return buf;
 }
 
-}  // namespace
-
-FrameOutput::FrameOutput(const Scene& scene, const std::filesystem::path& output_dir,
-                         RunManifest& manifest)
-    : scene_(scene),
-      dir_(output_dir),
-      manifest_(manifest),
-      pvd_(output_dir / (scene.name.empty() ? "frames.pvd" : scene.name + ".pvd")) {
-  ensure_directory(output_dir / "frames");
+/// The assigned species written (scene.output.species), each with its law.
+std::vector<std::pair<std::string, rate_law::RateLaw>> assigned_laws(const Scene& scene) {
+  std::vector<std::pair<std::string, rate_law::RateLaw>> out;
   std::vector<std::string> names;
   for (const auto& sp : scene.species) names.push_back(sp.name);
   for (const auto& name : scene.output.species) {
@@ -36,9 +30,53 @@ FrameOutput::FrameOutput(const Scene& scene, const std::filesystem::path& output
     d.expression = a->expanded;
     d.parameters = scene.parameters;
     d.origin = a->origin;
-    assigned_.emplace_back(name, rate_law::RateLaw(d, names, false));
-    for (const int s : assigned_.back().second.species()) inputs_.insert(names[s]);
+    out.emplace_back(name, rate_law::RateLaw(d, names, false));
   }
+  return out;
+}
+
+/// The stochastic (or deterministic) species a frame reads: the output species,
+/// then those the assigned ones read (`inputs`) and are not written.
+std::vector<std::string> frame_species(const Scene& scene, const std::set<std::string>& inputs,
+                                       bool stochastic) {
+  std::vector<std::string> out;
+  for (const auto& name : scene.output.species) {
+    const Species* s = scene.find_species(name);
+    if (s && s->stochastic == stochastic) out.push_back(name);
+  }
+  for (const auto& name : inputs) {
+    const Species* s = scene.find_species(name);
+    if (s->stochastic == stochastic && std::find(out.begin(), out.end(), name) == out.end()) {
+      out.push_back(name);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+FrameOutput::FrameOutput(const Scene& scene, const std::filesystem::path& output_dir,
+                         RunManifest& manifest)
+    : scene_(scene),
+      dir_(output_dir),
+      manifest_(manifest),
+      pvd_(output_dir / (scene.name.empty() ? "frames.pvd" : scene.name + ".pvd")),
+      assigned_(assigned_laws(scene)) {
+  ensure_directory(output_dir / "frames");
+  std::set<std::string> inputs;  // species the assigned ones read
+  for (const auto& [name, law] : assigned_) {
+    for (const int s : law.species()) inputs.insert(scene.species[s].name);
+  }
+  fluid_species_ = frame_species(scene, inputs, false);
+  ssa_species_ = frame_species(scene, inputs, true);
+}
+
+std::vector<std::string> frame_fluid_species(const Scene& scene) {
+  std::set<std::string> inputs;
+  for (const auto& [name, law] : assigned_laws(scene)) {
+    for (const int s : law.species()) inputs.insert(scene.species[s].name);
+  }
+  return frame_species(scene, inputs, false);
 }
 
 void FrameOutput::evaluate_assigned(std::map<std::string, std::vector<double>>& values,
@@ -69,41 +107,15 @@ std::vector<SpeciesColumn> FrameOutput::write(std::size_t index, double t, Fluid
   ParticleState state = particles;
   std::map<std::string, std::vector<double>> values;
   if (fluid) {
-    std::vector<std::string> deterministic;
-    for (const auto& name : scene_.output.species) {
-      const Species* s = scene_.find_species(name);
-      if (s && !s->stochastic) deterministic.push_back(name);
-    }
-    for (const auto& name : inputs_) {  // read by assigned species, not written
-      const Species* s = scene_.find_species(name);
-      if (!s->stochastic &&
-          std::find(deterministic.begin(), deterministic.end(), name) == deterministic.end()) {
-        deterministic.push_back(name);
-      }
-    }
-    FluidFrame f = fluid->frame(deterministic);
+    FluidFrame f = fluid->frame(fluid_species_);
     state = std::move(f.particles);
     for (auto& [name, c] : f.concentrations) values[name] = std::move(c);
   }
-  if (ssa) {
-    std::vector<std::string> stochastic;
-    for (const auto& name : scene_.output.species) {
-      const Species* s = scene_.find_species(name);
-      if (s && s->stochastic) stochastic.push_back(name);
-    }
-    for (const auto& name : inputs_) {
-      const Species* s = scene_.find_species(name);
-      if (s->stochastic &&
-          std::find(stochastic.begin(), stochastic.end(), name) == stochastic.end()) {
-        stochastic.push_back(name);
-      }
-    }
-    if (!stochastic.empty()) {
-      const SpeciesCounts counts = ssa->counts(stochastic);
-      for (std::size_t k = 0; k < counts.names.size(); ++k) {
-        auto& v = values[counts.names[k]];
-        v.assign(counts.values[k].begin(), counts.values[k].end());
-      }
+  if (ssa && !ssa_species_.empty()) {
+    const SpeciesCounts counts = ssa->counts(ssa_species_);
+    for (std::size_t k = 0; k < counts.names.size(); ++k) {
+      auto& v = values[counts.names[k]];
+      v.assign(counts.values[k].begin(), counts.values[k].end());
     }
   }
   if (!assigned_.empty()) evaluate_assigned(values, state);

@@ -15,6 +15,23 @@
 
 namespace sadr::orchestrator {
 
+LoopSettings make_loop_settings(const Scene& scene, const Plan& plan) {
+  LoopSettings s;
+  s.splitting = scene.time.splitting;
+  s.tau = scene.time.coupling_step;
+  s.t_end = scene.time.end;
+  s.output_times = scene.output.times;
+  s.checkpoint_every = scene.output.checkpoint_every;
+  s.fluid_stepping = plan.fluid_stepping;
+  s.fluid_calls_per_step = plan.fluid_calls_per_step;
+  s.geometry_each_step = plan.particles_to_ssa_each_step;
+  if (plan.back_transfer) s.back_transfer = plan.back_transfer_species;
+  s.frozen = plan.frozen_species;
+  s.overlap = plan.overlap && plan.overlap_allowed;
+  s.frame_to_frame = plan.frame_to_frame;
+  return s;
+}
+
 /// One job at a time on a persistent thread: the SSA stage of the overlapped
 /// loop. The job owns the SSA client while it runs; the mutex hand-over orders
 /// every use of the client (and its ZeroMQ socket) between the two threads.

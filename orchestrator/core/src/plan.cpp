@@ -131,7 +131,36 @@ Plan make_plan(const Scene& scene) {
     p.overlap_allowed = true;
     p.overlap_reason = "not decided";
   }
+  // Flow replay: the fluid must not depend on anything that differs between realizations.
+  if (!p.ssa_service) {
+    p.flow_replay_reason = "no stochastic species: the realizations are all the same";
+  } else if (!p.fluid_stepping) {
+    p.flow_replay_reason = "the fluid does not step";
+  } else if (p.thermal_noise) {
+    p.flow_replay_reason = "thermal noise on: k_B T > 0, the fluid draws random numbers";
+  } else if (p.back_transfer) {
+    p.flow_replay_reason =
+        "back-transfer ssa -> fluid: the fluid reads " + join(p.back_transfer_species);
+  } else {
+    p.flow_replay_allowed = true;
+    p.flow_replay_reason = "on only for an ensemble, sadr run -r R with R > 1";
+  }
   return p;
+}
+
+void decide_flow_replay(Plan& p, bool refused, int realizations) {
+  p.flow_replay = false;
+  if (!p.flow_replay_allowed) return;  // the reason from make_plan stays
+  if (refused) {
+    p.flow_replay_reason = "--no-flow-replay";
+  } else if (realizations < 2) {
+    p.flow_replay_reason = "one realization";
+  } else {
+    p.flow_replay = true;
+    p.flow_replay_reason =
+        "the fluid is the same in every realization: computed once, its coupling data "
+        "replayed to each";
+  }
 }
 
 void decide_overlap(Plan& p, OverlapRequest request, unsigned hardware_threads, int fluid_threads,
@@ -190,6 +219,8 @@ std::vector<std::string> Plan::lines() const {
   }
   out.push_back(std::string("overlap ssa step k || fluid step k+1: ") + (overlap ? "on" : "off") +
                 " (" + overlap_reason + ")");
+  out.push_back(std::string("flow replay: ") + (flow_replay ? "on" : "off") + " (" +
+                flow_replay_reason + ")");
   for (const auto& s : skipped) out.push_back("skipped: " + s);
   return out;
 }
@@ -216,6 +247,8 @@ nlohmann::json Plan::to_json() const {
       {"skipped", skipped},
       {"overlap", overlap},
       {"overlap_reason", overlap_reason},
+      {"flow_replay", flow_replay},
+      {"flow_replay_reason", flow_replay_reason},
   };
   if (!frozen_species.empty()) j["frozen_species"] = frozen_species;  // hybrid scenes only
   if (ssa_time_laws) j["ssa_time_laws"] = true;

@@ -48,6 +48,9 @@ struct RunOptions {
   /// Checkpoint and stop at the end of the first coupling step that reaches
   /// this simulated time (splits long runs into scheduler slots) [time].
   double stop_at = std::numeric_limits<double>::infinity();
+  /// Flow replay file (flow_replay.hpp): the fluid's answers come from it and no
+  /// fluid_service is used ("" = step the fluid).
+  std::filesystem::path flow_replay;
   /// Called after every frame with its output index, time and species columns
   /// (ensemble statistics).
   std::function<void(std::size_t, double, std::span<const SpeciesColumn>)> on_frame;

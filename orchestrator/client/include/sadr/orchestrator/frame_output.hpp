@@ -50,7 +50,12 @@ class FrameOutput {
   RunManifest& manifest_;
   PvdCollection pvd_;
   std::vector<std::pair<std::string, rate_law::RateLaw>> assigned_;  ///< written ones
-  std::set<std::string> inputs_;  ///< species the assigned ones read
+  std::vector<std::string> fluid_species_;  ///< asked of the fluid per frame
+  std::vector<std::string> ssa_species_;    ///< asked of the SSA per frame
 };
+
+/// The deterministic species a frame asks the fluid for (FluidService::frame):
+/// the output species, then those the assigned output species read.
+std::vector<std::string> frame_fluid_species(const Scene& scene);
 
 }  // namespace sadr::orchestrator

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "sadr/orchestrator/plan.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
 #include "sadr/orchestrator/scene.hpp"
 #include "sadr/orchestrator/service_interfaces.hpp"
@@ -46,6 +47,9 @@ struct LoopSettings {
   /// change: Lie, both services, fluid stepping, no back-transfer).
   bool overlap = false;
 };
+
+/// The loop settings of `scene` run as `plan` (stop_at: none).
+LoopSettings make_loop_settings(const Scene& scene, const Plan& plan);
 
 struct LoopHooks {
   /// A step ended on output time `t` (index into output_times).

@@ -14,7 +14,10 @@
 ///    from output time to output time (and checkpoint and stop times) in one
 ///    call each, with the same results (the NSM's pending event times carry over
 ///    from one call to the next);
-///  - only the species each service needs go on the wire.
+///  - only the species each service needs go on the wire;
+///  - no fluid in all but one pass of an ensemble when the fluid does not depend
+///    on the realization (flow replay: no thermal noise, no back-transfer): the
+///    fluid is computed once and its coupling data replayed to every realization.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -59,6 +62,13 @@ struct Plan {
   /// spare core); `overlap_reason` says why it is on or off.
   bool overlap = false;
   std::string overlap_reason;
+  /// The fluid is the same in every realization (it draws no random numbers and
+  /// reads nothing of the SSA), so an ensemble may compute it once and replay it.
+  bool flow_replay_allowed = false;
+  /// Flow replay is on for this run (decide_flow_replay()); `flow_replay_reason`
+  /// says why it is on or off.
+  bool flow_replay = false;
+  std::string flow_replay_reason;
 
   /// Human-readable lines ("fluid_service: sdpd, stepping every coupling step", ...).
   [[nodiscard]] std::vector<std::string> lines() const;
@@ -83,5 +93,10 @@ enum class OverlapRequest { kAuto, kOn, kOff };
 /// @param jobs realizations run at once
 void decide_overlap(Plan& plan, OverlapRequest request, unsigned hardware_threads,
                     int fluid_threads, int jobs);
+
+/// Sets plan.flow_replay and plan.flow_replay_reason: on when the scene allows it
+/// (flow_replay_allowed), `refused` (--no-flow-replay) is false and the run has
+/// at least two realizations.
+void decide_flow_replay(Plan& plan, bool refused, int realizations);
 
 }  // namespace sadr::orchestrator
