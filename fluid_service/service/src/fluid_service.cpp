@@ -186,6 +186,8 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
   rep.set_min_density(r.min_density);
   rep.set_max_density(r.max_density);
   rep.set_particles_moved(r.particles_moved);
+  rep.set_stable_time_step(r.stable_dt);
+  rep.set_limiting_criterion(r.limiting_criterion);
   apply_inflows();
   last_run_id_ = req.run_id();
   last_step_ = req.step_index();
