@@ -11,12 +11,13 @@ what happened:
   caught   exit 4 (numerical failure) with the diagnosis (step, particle, value);
   SILENT   exit 0 but non-finite or absurd values in the frames: a bug.
 Axes: the fluid sub-step from 0.25x to 4x the acoustic, viscous, diffusion and
-reaction limits (fluid.max_time_step with force_time_step; the limit itself is
-read from the refusal message of a probe run); the sound speed from 3x to 100x
-the flow speed; diffusivity and rate over 6 decades, deterministic and
-stochastic; stochastic copy numbers from 0 to past the largest accepted;
-jittered, clumped and sparse particles; one long run (>= 1e6 sub-steps) with
-the drift of mass, momentum, kinetic temperature and molecule count.
+reaction limits (fluid.max_time_step with force_time_step; the limit is the
+smallest one the same run meets with automatic sub-steps, from its run.json);
+the sound speed from 3x to 100x the flow speed; diffusivity and rate over 6
+decades, deterministic and stochastic; stochastic copy numbers from 0 to past
+the largest accepted; jittered, clumped and sparse particles; one long run
+(>= 1e6 sub-steps) with the drift of mass, momentum, kinetic temperature and
+molecule count.
 The body-force limit 0.25 sqrt((h/2)/|a|) binds only when |a| > c0^2/(h/2),
 i.e. when the hydrostatic density variation |a| H / c0^2 exceeds H/(h/2) (>> 1):
 never in a weakly compressible scene, so it has no cell of its own.
@@ -95,23 +96,17 @@ def run_cell(bin_dir, work, name, text, extra=()):
 
 
 def limit_of(bin_dir, work, name, text):
-    """(name, value) of the smallest stability limit of the run: a max_time_step
-    above the binding limit is an upper bound that does not bind, and the fluid
-    service warns naming that limit and its value (once per limit), so probe
-    again just below it until nothing is said."""
-    found, m_dt = None, 1.0e9
-    for k in range(6):
-        probe = sub(text, "fluid:\n", f"fluid:\n  max_time_step: {m_dt!r}\n")
-        c = run_cell(bin_dir, work, f"{name}_probe{k}", probe)
-        said = (pathlib.Path(c["dir"]) / "log.txt").read_text(errors="replace")
-        m = re.search(r"is above the (\w+) stability limit ([0-9.eE+-]+)", said)
-        if not m:
-            break
-        found = (m.group(1), float(m.group(2)))
-        m_dt = found[1] * (1 - 1e-6)
-    if not found:
-        raise SystemExit(f"no limit in the probe's message for {name}: {c['message']!r}")
-    return found
+    """(name, value) of the smallest stability limit the run meets: one run with
+    the automatic sub-steps, whose run.json names the smallest binding limit the
+    fluid's sub-steps met (`fluid_smallest_limit`; the limits follow the state,
+    so this is below the limit at t = 0 when e.g. the species fill in)."""
+    c = run_cell(bin_dir, work, f"{name}_limit", text)
+    manifest = pathlib.Path(c["dir"]) / "out" / "run.json"
+    got = json.loads(manifest.read_text()).get("fluid_smallest_limit", {}) \
+        if manifest.exists() else {}
+    if "stable_time_step" not in got:
+        raise SystemExit(f"no smallest limit in {manifest} for {name}: {c['message']!r}")
+    return got["limiting_criterion"], float(got["stable_time_step"])
 
 
 def figure(cell, kind):

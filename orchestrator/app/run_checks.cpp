@@ -19,39 +19,32 @@ namespace sadr::orchestrator {
 namespace fs = std::filesystem;
 namespace {
 
-/// The fluid backend's sub-steps ahead at t = 0, from the backend itself: a fluid_service
-/// handler in this process takes the run's Init message (before any service is started, so
-/// that validate and the plan of run/resume can print it). Nothing if the plan does not step
-/// the fluid, or if the backend refuses the initial state (the run then fails at the service's
-/// init with the service's message, as without this).
+/// The fluid backend's sub-steps ahead at t = 0, from the backend itself, started in this
+/// process on the run's Init message (fluid::initial_substep_bound: no service, no handler, no
+/// serialised message), before any service is started, so that validate and the plan of
+/// run/resume can print it. Nothing if the plan does not step the fluid, or if the backend
+/// refuses the initial state (the run then fails at the service's init with the service's
+/// message, as without this).
 std::optional<FluidSubsteps> fluid_substeps_at_t0(const Scene& scene, const Plan& plan) {
   if (!plan.fluid_service || !plan.fluid_stepping) return std::nullopt;
-  struct QuietLog {  // the handler's own lines are the service's, printed when it runs
+  struct QuietLog {  // the backend's own lines are the service's, printed when it runs
     log::Level saved = log::level();
     QuietLog() { log::set_level(log::Level::kError); }
     ~QuietLog() { log::set_level(saved); }
   } quiet;
-  fluid::v1::FluidRequest request;
-  try {
-    *request.mutable_init() = make_fluid_init(scene, plan, realization_seed(scene.seed, 0));
-  } catch (const std::exception&) {
-    return std::nullopt;  // the run says why, where it builds the same message
-  }
-  std::string bytes;
-  // On a thread of its own, as the embedded service runs: the handler sets that thread's
-  // OpenMP thread count (SADR_FLUID_THREADS), not this one's.
+  std::optional<FluidSubsteps> out;
+  // On a thread of its own, as the embedded service runs: the start sets that thread's OpenMP
+  // thread count (SADR_FLUID_THREADS), not this one's.
   std::thread([&] {
     try {
-      fluid::FluidServiceHandler handler;
-      bool shutdown = false;
-      bytes = handler.handle(request.SerializeAsString(), shutdown);
+      const fluid::SubstepBound b = fluid::initial_substep_bound(
+          make_fluid_init(scene, plan, realization_seed(scene.seed, 0)));
+      out = FluidSubsteps{b.limit, b.limit_name, b.dt};
     } catch (const std::exception&) {
-      bytes.clear();
+      out.reset();  // the run says why, where it builds the same message or starts the backend
     }
   }).join();
-  fluid::v1::FluidReply reply;
-  if (!reply.ParseFromString(bytes) || !wire::from_proto(reply.status()).ok()) return std::nullopt;
-  return fluid_substeps(reply.init());
+  return out;
 }
 
 }  // namespace

@@ -30,6 +30,18 @@ void apply_threads(int threads) {
 }
 }  // namespace
 
+SubstepBound initial_substep_bound(v1::InitRequest request) {
+  apply_threads(service_threads_from_env("SADR_FLUID_THREADS"));
+  BackendRegistry registry;
+  register_builtin_backends(registry);
+  auto backend = registry.create(request.model().backend());
+  const BackendStart start = start_from_proto(request);
+  request = v1::InitRequest{};  // the message's copy of the particles is not needed any more
+  ParticleState scratch;
+  std::vector<double> values;
+  return start_backend(*backend, start, scratch, values);
+}
+
 FluidServiceHandler::FluidServiceHandler()
     : threads_(service_threads_from_env("SADR_FLUID_THREADS")) {
   register_builtin_backends(registry_);
@@ -88,46 +100,15 @@ void FluidServiceHandler::handle_typed(const v1::FluidRequest& request, v1::Flui
 }
 
 void FluidServiceHandler::init(const v1::InitRequest& req, v1::InitReply& rep) {
-  const ParticleState particles = wire::from_proto(req.particles(), "init.particles");
-  FluidModel model = model_from_proto(req.model(), particles.size());
   auto backend = registry_.create(req.model().backend());
-  std::vector<std::vector<double>> conc(model.species.size());
-  for (int k = 0; k < req.concentrations().species_size(); ++k) {
-    const auto& f = req.concentrations().species(k);
-    const std::string where = "init.concentrations.species[" + std::to_string(k) + "]";
-    const int s = model.species_index(f.name());
-    if (s < 0) throw InvalidArgument(where + ": unknown species '" + f.name() + "'");
-    if (static_cast<std::size_t>(f.concentrations_size()) != particles.size()) {
-      throw InvalidArgument(where + ".concentrations has " +
-                            std::to_string(f.concentrations_size()) + " entries, expected " +
-                            std::to_string(particles.size()));
-    }
-    conc[static_cast<std::size_t>(s)].assign(f.concentrations().begin(), f.concentrations().end());
-  }
-  for (auto& c : conc) {
-    if (c.empty()) c.assign(particles.size(), 0.0);
-  }
-  std::vector<InflowBuffer> inflows;
-  for (int k = 0; k < req.model().inflows_size(); ++k) {
-    const std::string where = "init.model.inflows[" + std::to_string(k) + "]";
-    const auto& in = req.model().inflows(k);
-    const int s = model.species_index(in.species());
-    if (s < 0) {
-      throw InvalidArgument(
-          where + ".species = '" + in.species() + "' is not a deterministic species of the model",
-          {{"field", where + ".species"}, {"value", in.species()}});
-    }
-    inflows.push_back({s, wire::from_proto(in, particles.dimension, where)});
-  }
-  backend->initialize(model, particles, conc);
+  BackendStart start = start_from_proto(req);
+  const SubstepBound bound = start_backend(*backend, start, scratch_, inflow_values_);
   backend_ = std::move(backend);
-  model_ = std::move(model);
-  n_particles_ = particles.size();
+  model_ = std::move(start.model);
+  n_particles_ = start.particles.size();
   have_last_ = false;
-  inflows_ = std::move(inflows);
-  apply_inflows();
+  inflows_ = std::move(start.inflows);
   // The sub-steps ahead at the initial state (with the inflow buffers' values), for the plan.
-  const SubstepBound bound = backend_->current_substep_bound();
   rep.set_stable_time_step(bound.limit);
   rep.set_limiting_criterion(bound.limit_name);
   rep.set_max_substep(bound.dt);
@@ -186,6 +167,8 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
   rep.set_min_density(r.min_density);
   rep.set_max_density(r.max_density);
   rep.set_particles_moved(r.particles_moved);
+  rep.set_stable_time_step(r.stable_dt);
+  rep.set_limiting_criterion(r.limiting_criterion);
   apply_inflows();
   last_run_id_ = req.run_id();
   last_step_ = req.step_index();

@@ -232,4 +232,41 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
   return m;
 }
 
+BackendStart start_from_proto(const v1::InitRequest& req) {
+  BackendStart start;
+  start.particles = wire::from_proto(req.particles(), "init.particles");
+  const ParticleState& particles = start.particles;
+  start.model = model_from_proto(req.model(), particles.size());
+  const FluidModel& model = start.model;
+  std::vector<std::vector<double>>& conc = start.concentrations;
+  conc.resize(model.species.size());
+  for (int k = 0; k < req.concentrations().species_size(); ++k) {
+    const auto& f = req.concentrations().species(k);
+    const std::string where = "init.concentrations.species[" + std::to_string(k) + "]";
+    const int s = model.species_index(f.name());
+    if (s < 0) throw InvalidArgument(where + ": unknown species '" + f.name() + "'");
+    if (static_cast<std::size_t>(f.concentrations_size()) != particles.size()) {
+      throw InvalidArgument(where + ".concentrations has " +
+                            std::to_string(f.concentrations_size()) + " entries, expected " +
+                            std::to_string(particles.size()));
+    }
+    conc[static_cast<std::size_t>(s)].assign(f.concentrations().begin(), f.concentrations().end());
+  }
+  for (auto& c : conc) {
+    if (c.empty()) c.assign(particles.size(), 0.0);
+  }
+  for (int k = 0; k < req.model().inflows_size(); ++k) {
+    const std::string where = "init.model.inflows[" + std::to_string(k) + "]";
+    const auto& in = req.model().inflows(k);
+    const int s = model.species_index(in.species());
+    if (s < 0) {
+      throw InvalidArgument(
+          where + ".species = '" + in.species() + "' is not a deterministic species of the model",
+          {{"field", where + ".species"}, {"value", in.species()}});
+    }
+    start.inflows.push_back({s, wire::from_proto(in, particles.dimension, where)});
+  }
+  return start;
+}
+
 }  // namespace sadr::fluid

@@ -93,6 +93,10 @@ FluidStep FluidClient::advance(std::uint64_t step_index, double dt, bool want_ge
   step.substeps = rep.substeps();
   step.particles_moved = rep.particles_moved();
   step.compute_seconds = rep.compute_seconds();
+  if (rep.stable_time_step() > 0) {  // 0: a service that does not report it
+    step.stable_time_step = rep.stable_time_step();
+    step.limiting_criterion = rep.limiting_criterion();
+  }
   if (rep.geometry_generation() > 0) {
     step.geometry = Geometry::shared_memory(rep.geometry_generation());
   } else if (rep.has_particles()) {

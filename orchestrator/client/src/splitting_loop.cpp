@@ -205,6 +205,7 @@ void SplittingLoop::step(const CouplingStep& cs, bool defer_ssa) {
                                       counts, before_ssa ? s_.frozen : kNone);
       stats_.timings_s["fluid_compute"] += rep.compute_seconds;
       stats_.fluid_substeps += rep.substeps;
+      stats_.note_fluid_limit(rep.stable_time_step, rep.limiting_criterion, rep.time);
       moved = rep.particles_moved || moved;
       geometry = std::move(rep.geometry);
       if (before_ssa) frozen = std::move(rep.concentrations);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sadr/orchestrator/run_manifest.hpp"
 
+#include <cmath>
 #include <cstdlib>
-
 #include <ctime>
 
 #include "sadr/common/build_info.hpp"
@@ -63,11 +63,20 @@ nlohmann::json RunManifest::to_json() const {
           {"overlapped_steps", overlapped_steps},
           {"fluid_substeps", fluid_substeps},
           {"fluid_at_t0", fluid_at_t0},
+          {"fluid_smallest_limit", fluid_smallest_limit},
           {"ssa_events", ssa_events},
           {"time", time},
           {"timings_s", timings_s},
           {"frames", frames},
           {"plan", plan}};
+}
+
+void RunManifest::note_fluid_limit(double dt, const std::string& criterion, double at) {
+  if (!(dt > 0) || !std::isfinite(dt)) return;
+  const auto it = fluid_smallest_limit.find("stable_time_step");
+  if (it != fluid_smallest_limit.end() && !(dt < it->get<double>())) return;
+  fluid_smallest_limit = {
+      {"stable_time_step", dt}, {"limiting_criterion", criterion}, {"time", at}};
 }
 
 void RunManifest::write(const std::filesystem::path& path) const {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sadr/fluid/backend_registry.hpp"
+#include "sadr/fluid/backend_start.hpp"
 #include "sadr/fluid/fluid_model.hpp"
 #include "sadr/fluid/inflow.hpp"
 #include "sadr/fluid/v1/fluid_service.pb.h"
@@ -25,6 +26,16 @@ namespace sadr::fluid {
 /// Converts the wire model to the core model (all species, stochastic ones
 /// flagged non-deterministic). Throws InvalidArgument naming the field.
 FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles);
+
+/// The backend's start (model, particles, concentrations, inflow buffers) from an Init message.
+/// Throws InvalidArgument naming the field.
+BackendStart start_from_proto(const v1::InitRequest& req);
+
+/// The sub-steps ahead at t = 0 of the backend `request` names, started here on the calling
+/// thread (OpenMP threads: SADR_FLUID_THREADS, else the default) from the message alone:
+/// what the service's Init replies, without a service, a handler or a serialised message.
+/// The plan prints it. Throws what the Init would refuse.
+SubstepBound initial_substep_bound(v1::InitRequest request);
 
 class FluidServiceHandler : public wire::TypedHandler<v1::FluidRequest, v1::FluidReply> {
  public:

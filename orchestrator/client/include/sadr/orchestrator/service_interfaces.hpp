@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -63,7 +64,11 @@ struct FluidStep {
   std::uint32_t substeps = 0;
   bool particles_moved = false;
   double compute_seconds = 0.0;  ///< inside the backend [s]
-  Geometry geometry;             ///< when asked for (advance's want_geometry)
+  /// The smallest binding stability limit the stage's sub-steps met [time] (+inf: none binds or
+  /// not reported) and its name ("reaction", ...).
+  double stable_time_step = std::numeric_limits<double>::infinity();
+  std::string limiting_criterion;
+  Geometry geometry;  ///< when asked for (advance's want_geometry)
   /// advance's return_concentrations after the stage (hybrid reactions), in that order.
   SpeciesConcentrations concentrations;
 };

@@ -50,6 +50,13 @@ struct RunManifest {
   /// and limiting_criterion (its binding stability limit at t = 0), max_substep (the longest
   /// sub-step it takes from there; null: one per call) and substep_criterion (what sets it).
   nlohmann::json fluid_at_t0 = nlohmann::json::object();
+  /// The smallest binding stability limit the fluid's sub-steps met in this invocation (the
+  /// limits follow the state, so it can be far below fluid_at_t0's): {stable_time_step,
+  /// limiting_criterion, time (the end of the coupling stage that met it)}; {} if none bound.
+  /// A forced sub-step (fluid.force_time_step) at or below it keeps to every limit of the run.
+  nlohmann::json fluid_smallest_limit = nlohmann::json::object();
+  /// Takes a fluid stage's smallest limit `dt` [time] (ignored unless finite and > 0).
+  void note_fluid_limit(double dt, const std::string& criterion, double time);
   /// SSA events (reactions + diffusion jumps) of this invocation, as fluid_substeps.
   std::uint64_t ssa_events = 0;
   double time = 0.0;  ///< simulated time reached [time]

@@ -116,10 +116,11 @@ void enforce_limits(const WorkEstimate& estimate, bool allow_large);
 /// Soft thresholds (documented in docs/cli.md).
 inline constexpr double kSoftMemoryShare = 0.5;  ///< of the machine's memory
 /// sadr's peak while it initialises the fluid backend for the plan's t = 0 sub-step figure is
-/// its own figure plus this share of the fluid service's: the Init message, its bytes, their
-/// parse and the backend (measured 2.6x on the ~1e5-particle sdpd coagulation channel:
-/// 299 MiB against sadr 61.9 + fluid 101 MiB estimated).
-inline constexpr double kInProcessInitFluidShare = 2.6;
+/// its own figure plus this share of the fluid service's: the Init message, the backend's start
+/// decoded from it (the message is freed then) and the backend (measured 1.85x on the
+/// ~1e5-particle sdpd coagulation channel: 248.5 MiB against sadr 61.9 + fluid 101 MiB
+/// estimated; 2.0 with a margin).
+inline constexpr double kInProcessInitFluidShare = 2.0;
 inline constexpr double kSoftOutputBytes = 50e9;  ///< 50 GB of frames
 inline constexpr double kSoftFrames = 1e5;
 inline constexpr double kSoftCouplingSteps = 1e8;
