@@ -92,6 +92,8 @@ TEST(FlowReplay, EnsembleFramesAreByteIdenticalWithAndWithoutReplay) {
     EXPECT_EQ(a["timings_s"].value("fluid_compute", 0.0), 0.0) << r;
     EXPECT_GT(b["timings_s"].value("fluid_compute", 0.0), 0.0) << r;
     EXPECT_EQ(a["fluid_substeps"], b["fluid_substeps"]) << r;
+    EXPECT_EQ(a["fluid_smallest_limit"], b["fluid_smallest_limit"]) << r;  // replayed too
+    EXPECT_TRUE(a["fluid_smallest_limit"].contains("stable_time_step")) << r;
     EXPECT_GT(a["fluid_substeps"].get<int>(), 0) << r;
   }
 }

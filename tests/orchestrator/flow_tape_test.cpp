@@ -34,6 +34,8 @@ FlowRecord advance_record(std::uint64_t step, bool with_geometry) {
   r.species = {"C"};
   r.time = 0.1 + 0.02 * static_cast<double>(step);
   r.substeps = 3;
+  r.stable_time_step = 1.0 / 3.0;
+  r.limiting_criterion = "reaction";
   r.moved = true;
   r.has_particles = with_geometry;
   if (with_geometry) {
@@ -73,11 +75,13 @@ bool same(const FlowRecord& a, const FlowRecord& b) {
   bool ok = a.call == b.call && a.step_index == b.step_index && same_bits<double>({a.dt}, {b.dt}) &&
             a.want_geometry == b.want_geometry && a.species == b.species &&
             same_bits<double>({a.time}, {b.time}) && a.substeps == b.substeps &&
-            a.moved == b.moved && a.has_particles == b.has_particles &&
-            p.dimension == q.dimension && same_bits(p.positions, q.positions) &&
-            same_bits(p.velocities, q.velocities) && same_bits(p.densities, q.densities) &&
-            same_bits(p.masses, q.masses) && same_bits(p.kinds, q.kinds) &&
-            same_bits(p.ids, q.ids) && a.concentrations.size() == b.concentrations.size();
+            same_bits<double>({a.stable_time_step}, {b.stable_time_step}) &&
+            a.limiting_criterion == b.limiting_criterion && a.moved == b.moved &&
+            a.has_particles == b.has_particles && p.dimension == q.dimension &&
+            same_bits(p.positions, q.positions) && same_bits(p.velocities, q.velocities) &&
+            same_bits(p.densities, q.densities) && same_bits(p.masses, q.masses) &&
+            same_bits(p.kinds, q.kinds) && same_bits(p.ids, q.ids) &&
+            a.concentrations.size() == b.concentrations.size();
   for (std::size_t k = 0; ok && k < a.concentrations.size(); ++k) {
     ok = a.concentrations[k].first == b.concentrations[k].first &&
          same_bits(a.concentrations[k].second, b.concentrations[k].second);

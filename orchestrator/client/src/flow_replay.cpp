@@ -88,6 +88,8 @@ FluidStep FlowRecorder::advance(std::uint64_t step_index, double dt, bool want_g
   r.species = return_concentrations;
   r.time = step.time;
   r.substeps = step.substeps;
+  r.stable_time_step = step.stable_time_step;
+  r.limiting_criterion = step.limiting_criterion;
   r.moved = step.particles_moved;
   r.has_particles = !step.geometry.empty();
   if (r.has_particles) r.particles = arrays_of(step.geometry, "advance");
@@ -156,6 +158,8 @@ FluidStep FlowReplay::advance(std::uint64_t step_index, double dt, bool want_geo
   FluidStep step;
   step.time = r.time;
   step.substeps = r.substeps;
+  step.stable_time_step = r.stable_time_step;
+  step.limiting_criterion = r.limiting_criterion;
   step.particles_moved = r.moved;
   if (r.has_particles) step.geometry = inline_geometry(r.particles);
   step.concentrations = std::move(r.concentrations);

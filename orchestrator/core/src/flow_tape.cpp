@@ -79,6 +79,8 @@ std::string encode(const FlowRecord& r) {
   for (const auto& s : r.species) o.put_string(s);
   o.put(r.time);
   o.put(r.substeps);
+  o.put(r.stable_time_step);
+  o.put_string(r.limiting_criterion);
   o.put<std::uint8_t>(r.moved);
   o.put<std::uint8_t>(r.has_particles);
   if (r.has_particles) {
@@ -112,6 +114,8 @@ FlowRecord decode(std::string_view payload) {
   for (auto& s : r.species) s = in.get_string();
   r.time = in.get<double>();
   r.substeps = in.get<std::uint32_t>();
+  r.stable_time_step = in.get<double>();
+  r.limiting_criterion = in.get_string();
   r.moved = in.get<std::uint8_t>() != 0;
   r.has_particles = in.get<std::uint8_t>() != 0;
   if (r.has_particles) {

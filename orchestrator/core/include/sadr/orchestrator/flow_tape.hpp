@@ -11,7 +11,8 @@
 ///   record: u32 "REC1", u64 ordinal (0, 1, ...), u64 payload size, payload,
 ///           u64 FNV-1a 64 of the ordinal, size and payload bytes
 ///   payload: u8 call, u64 step index, f64 dt, u8 want geometry, the species
-///           names asked for, f64 time, u32 sub-steps, u8 moved, u8 has particles,
+///           names asked for, f64 time, u32 sub-steps, f64 smallest stability
+///           limit met and its name (u32 n + n bytes), u8 moved, u8 has particles,
 ///           [particles: u32 dimension, then positions, velocities, densities,
 ///           masses, kinds, ids, each as u64 count + values], then the
 ///           concentrations (u32 count; each a name and u64 count + doubles).
@@ -35,7 +36,7 @@ namespace sadr::orchestrator {
 
 /// The file's name in an ensemble's output folder.
 inline constexpr std::string_view kFlowTapeName = "flow_replay.bin";
-inline constexpr std::uint32_t kFlowTapeVersion = 1;
+inline constexpr std::uint32_t kFlowTapeVersion = 2;
 
 /// Which FluidService call a record holds (service_interfaces.hpp).
 enum class FlowCall : std::uint8_t { kAdvance = 1, kGeometry = 2, kFrame = 3 };
@@ -52,6 +53,9 @@ struct FlowRecord {
   // Answered:
   double time = 0.0;           ///< advance: time after the stage [time]
   std::uint32_t substeps = 0;  ///< advance
+  /// advance: the smallest stability limit the stage met [time] (FluidStep) and its name
+  double stable_time_step = 0.0;
+  std::string limiting_criterion;
   bool moved = false;          ///< advance: particles moved
   bool has_particles = false;  ///< `particles` holds an answer
   ParticleState particles;     ///< geometry (advance, geometry) or frame state
