@@ -114,5 +114,18 @@ TEST(WallModel, MorrisWallsFromTheSceneSlowTheChannelFlow) {
   EXPECT_LT(morris, 0.99 * stationary);
 }
 
+// fluid.wall_model: adami (Adami, Hu & Adams 2012) reaches the SDPD backend without wall planes:
+// the wall velocity 2 v_wall - <v_f> puts the no-slip planes midway between the fluid and the
+// wall rows (y = 0, 1), so, as with Morris walls, the start-up flow is slower than with stationary
+// wall particles.
+TEST(WallModel, AdamiWallsFromTheSceneSlowTheChannelFlow) {
+  const double stationary = mean_fluid_vx_at_t2("stationary-a", "");
+  const double adami = mean_fluid_vx_at_t2("adami", "  wall_model: adami\n");
+  std::printf("mean fluid vx at t = 2: stationary %.5f, adami %.5f (ratio %.4f)\n", stationary,
+              adami, adami / stationary);
+  EXPECT_GT(adami, 0.01);
+  EXPECT_LT(adami, 0.99 * stationary);
+}
+
 }  // namespace
 }  // namespace sadr::e2e

@@ -2,6 +2,7 @@
 # The "sdpd" backend's sources in sadr::fluid_backends (included by ../CMakeLists.txt; its schema
 # entry sdpd_schema.cpp goes into sadr::fluid_schema by convention, ../backends.cmake).
 target_sources(sadr_fluid_backends PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_adami_walls.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_backend.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_fused_step.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_gather.cpp

@@ -13,7 +13,8 @@
 ///  - sdpd_fused_step.cpp: the bulk-fluid sub-step with the per-particle work in the pair loops;
 ///  - sdpd_limits.cpp: stability limits and the health check;
 ///  - sdpd_restart.cpp: the saved state;
-///  - sdpd_open_boundary.*: the open channel; sdpd_morris_walls.hpp: Morris walls.
+///  - sdpd_open_boundary.*: the open channel; sdpd_morris_walls.hpp: Morris walls;
+///  - sdpd_adami_walls.cpp: Adami walls (wall pressure and velocity from the fluid).
 /// Both pair loops are bit-identical on any thread count (no atomics). Wall particles (kind kWall)
 /// never move, keep v = 0 (no-slip), evolve their density by continuity (so the fluid cannot
 /// penetrate) and hold their species values (Dirichlet) or are excluded (no-flux / Neumann ghost).
@@ -63,6 +64,12 @@ class SdpdBackend final : public BackendBase {
   void evaluate_current(std::uint64_t noise_step, double dt, Rates& out);
   /// Whether the transport-velocity formulation is on (parameter transport_velocity).
   [[nodiscard]] bool transport_velocity() const { return tvf_; }
+  /// Adami walls (wall_model kAdami): whether on, and the wall values of the last evaluation
+  /// (sdpd_adami_walls.cpp): pressure p_w (N; 0 off the walls) and the velocity of the viscous
+  /// term (3N; 0 off the walls and at walls without a fluid neighbour) (testing aid).
+  [[nodiscard]] bool adami_walls() const { return adami_; }
+  [[nodiscard]] const std::vector<double>& adami_wall_pressure() const { return adami_p_; }
+  [[nodiscard]] const std::vector<double>& adami_wall_velocity() const { return adami_v_; }
   /// Heap bytes held by the backend (state, scratch, neighbour list), for the benchmark.
   [[nodiscard]] std::size_t memory_bytes() const;
   /// Stability limits at the current state (evaluates the rates once, on a copy of the state
@@ -175,6 +182,11 @@ class SdpdBackend final : public BackendBase {
   /// Transport velocity (sdpd_transport_velocity.cpp): out.shift and the A-tensor term of
   /// out.acc at the state y whose rates `out` holds (pd2_, vol_ of y), for a sub-step dt.
   void apply_transport_velocity(const Y& y, double dt, Rates& out);
+  /// Adami walls (sdpd_adami_walls.cpp): adami_p_, adami_v_ and, for every wall particle,
+  /// pd2_ = p_w/d_w^2 with rho_w from p_w by the inverse Tait law, from the fluid state y
+  /// (pd2_, inv_nd_, vol_ of y already filled).
+  template <int D>
+  void adami_wall_values(const Y& y);
   template <int D>
   void transport_velocity_terms(const Y& y, double dt, Rates& out);
   /// Wall-free, species-free systems: each pair evaluated once (sdpd_half_path.cpp).
@@ -277,6 +289,9 @@ class SdpdBackend final : public BackendBase {
   /// the full-list gather path only; p_b [pressure].
   bool tvf_ = false;
   double tvf_shift_pressure_ = 0;
+  /// Adami walls (wall_model kAdami; full-list gather path): the wall values of the evaluation.
+  bool adami_ = false;
+  std::vector<double> adami_p_, adami_v_;
   SlabScheduler slabs_;
   /// fused_substep: hin_ holds y_ (with the noise factor if temperature > 0), hacc_ is zero and
   /// y_moved_ tells whether y_.x has moved more than skin/2 since the list build. Cleared by

@@ -82,6 +82,7 @@ void SdpdBackend::evaluate_gather(Y& y, std::uint64_t noise_step, Rates& out, bo
     vol_[i] = mass_[i] / y.rho[i];
     if (noise_on) sqrt_inv_nd_[i] = std::sqrt(nd_inv);
   }
+  if (adami_) adami_wall_values<D>(y);  // wall pressure and velocity from this fluid state
   // c_D: see make_pair_params
   const double c_d = 2.0 * (D + 2) / (D + 3);
   const GatherTerms t{h,
@@ -167,8 +168,8 @@ void SdpdBackend::gather_block(std::size_t i, const Y& y, const GatherTerms& t, 
   s.npairs = noise_on ? m : 0;
 }
 
-// General path (wall particles, Morris walls): the evaluators pair by pair; the noise pairs are
-// collected in the block for pair_noise_numbers.
+// General path (wall particles, Morris walls, Adami walls): the evaluators pair by pair; the noise
+// pairs are collected in the block for pair_noise_numbers.
 template <int D>
 void SdpdBackend::gather_pairs(std::size_t i, const Y& y, const GatherTerms& t, PairScratch& sc,
                                GatherSums<D>& s, Rates& out) {
@@ -204,6 +205,12 @@ void SdpdBackend::gather_pairs(std::size_t i, const Y& y, const GatherTerms& t, 
       pressure_only(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], v, s.force);
       const SdpdMomentumTerm viscous_only{t.momentum.friction};
       viscous_only(g, 0.0, 0.0, inv_nd_[i] * inv_nd_[j], vb, s.force);
+    } else if (adami_ && wall_[j]) {
+      // Adami et al. 2012: the wall's extrapolated velocity in the viscous term (pd2_[j] holds
+      // its extrapolated pressure; the continuity term above keeps the wall's v = 0)
+      std::array<double, D> va;
+      for (int a = 0; a < D; ++a) va[a] = vi[a] - adami_v_[3 * j + a];
+      t.momentum(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], va, s.force);
     } else {
       t.momentum(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], v, s.force);
     }
@@ -235,7 +242,7 @@ void SdpdBackend::gather_particle(std::size_t i, const Y& y, std::uint64_t noise
   const bool wall_i = wall_[i] != 0;
   GatherSums<D> s;
   sc.reserve(nlist_.of(i).size());
-  if (!wall_i && !morris_.enabled()) {
+  if (!wall_i && !morris_.enabled() && !adami_) {
     gather_block<D>(i, y, t, sc, s, out);
   } else {
     gather_pairs<D>(i, y, t, sc, s, out);

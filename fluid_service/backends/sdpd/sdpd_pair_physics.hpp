@@ -74,6 +74,26 @@ inline double a_tensor_component(double half_vf, double vi, double rho_sx_i, dou
   return -half_vf * (vi * rho_sx_i + vj * rho_sx_j);
 }
 
+/// Adami, Hu & Adams (2012) generalized wall (sdpd_adami_walls.cpp): the pair's terms of the
+/// sums of wall particle w over its fluid neighbours f, with W_wf the kernel weight and x_wf =
+/// x_w - x_f: the weight W_wf, p_f W_wf, v_f W_wf and rho_f (b . x_wf) W_wf with b = g - a_w the
+/// body acceleration relative to the wall's (a_w = 0: walls never move).
+inline double adami_hydrostatic_term(double rho_f, double bx, double w) {
+  return rho_f * bx * w;
+}
+
+/// Adami et al. 2012 eq 27: the wall pressure p_w = (sum_f p_f W_wf + sum_f rho_f (b . x_wf)
+/// W_wf) / sum_f W_wf.
+inline double adami_wall_pressure(double sum_pw, double sum_hydro, double sum_w) {
+  return (sum_pw + sum_hydro) / sum_w;
+}
+
+/// Adami et al. 2012 eqs 22-23: component a of the wall velocity in the viscous term (no-slip),
+/// 2 v_wall - sum_f v_f W_wf / sum_f W_wf.
+inline double adami_wall_velocity(double v_wall, double sum_vw, double sum_w) {
+  return 2.0 * v_wall - sum_vw / sum_w;
+}
+
 }  // namespace sadr::fluid::sdpd
 
 namespace sadr::fluid {

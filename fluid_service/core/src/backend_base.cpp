@@ -185,6 +185,15 @@ void BackendBase::require_initialized(const char* what) const {
 void BackendBase::initialize(const FluidModel& model, const ParticleState& initial,
                              const std::vector<std::vector<double>>& concentrations) {
   check_model(model);
+  // The wall model is one the backend's schema entry offers (the scene loader checks the same).
+  const auto& walls = capabilities().wall_models;
+  const std::string wall = wall_model_name(model.wall_model);
+  if (std::find(walls.begin(), walls.end(), wall) == walls.end()) {
+    std::string allowed;
+    for (const auto& w : walls) allowed += (allowed.empty() ? "" : ", ") + w;
+    throw InvalidArgument(prefix(name()) + "wall_model " + wall +
+                          " is not offered (allowed: " + allowed + ")");
+  }
   validate_initial_state(name(), model, initial, concentrations);
   initialized_ = false;
   setup(model, initial, concentrations);

@@ -184,9 +184,13 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     case v1::WALL_MODEL_MORRIS:
       m.wall_model = WallModel::kMorrisExtrapolated;
       break;
+    case v1::WALL_MODEL_ADAMI:
+      m.wall_model = WallModel::kAdami;
+      break;
     default:
       throw InvalidArgument(where + ".wall_model = " + std::to_string(in.wall_model()) +
-                            " (allowed: WALL_MODEL_STATIONARY, WALL_MODEL_MORRIS)");
+                            " (allowed: WALL_MODEL_STATIONARY, WALL_MODEL_MORRIS, "
+                            "WALL_MODEL_ADAMI)");
   }
   if (in.has_wall_tangents()) {
     if (in.wall_planes_size() != 0) {

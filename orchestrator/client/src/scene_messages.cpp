@@ -87,7 +87,8 @@ fluid::v1::DensityMode density_mode(const std::string& name) {
 fluid::v1::WallModel wall_model(const std::string& name) {
   if (name == "stationary") return fluid::v1::WALL_MODEL_STATIONARY;
   if (name == "morris") return fluid::v1::WALL_MODEL_MORRIS;
-  throw InvalidArgument("fluid.wall_model = '" + name + "' (allowed: stationary, morris)");
+  if (name == "adami") return fluid::v1::WALL_MODEL_ADAMI;
+  throw InvalidArgument("fluid.wall_model = '" + name + "' (allowed: stationary, morris, adami)");
 }
 
 }  // namespace

@@ -165,7 +165,7 @@ def main():
             json.dump(results, f, indent=1)
     ok = True
     for m in results:
-        if m["wall_model"] != "morris":
+        if m["wall_model"] not in ("morris", "adami"):
             continue
         if not (m["l2"] <= args.l2_tol and abs(m["flux_error"]) <= args.flux_tol):
             print("FAIL: %s across %d: L2 %.4f (tol %g), flux error %+.4f (tol %g)" % (

@@ -65,7 +65,23 @@ enum class WallModel {
                         ///< beta = min(1.5, 1 + d_j/d_i), d = distance to the region's wall
                         ///< surface (plane, circle or sphere), or to the wall particle's own
                         ///< tangent plane (FluidModel::wall_tangents)
+  kAdami,  ///< Adami, Hu & Adams 2012: each wall particle's pressure and velocity extrapolated
+           ///< from its fluid neighbours (kernel-weighted, with the hydrostatic term of the
+           ///< gravity); the pressure (and the density from it by the inverse Tait law) in the
+           ///< pressure term and 2 v_wall - <v_f> in the viscous term of fluid-wall pairs
 };
+
+/// The scene's name of a wall model ("stationary", "morris", "adami"; the schema's names).
+[[nodiscard]] inline const char* wall_model_name(WallModel m) {
+  switch (m) {
+    case WallModel::kMorrisExtrapolated:
+      return "morris";
+    case WallModel::kAdami:
+      return "adami";
+    default:
+      return "stationary";
+  }
+}
 
 /// One chemical species carried by the particles.
 struct SpeciesSpec {
