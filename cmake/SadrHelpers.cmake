@@ -7,6 +7,18 @@ function(sadr_set_warnings target)
     $<$<BOOL:${SADR_WERROR}>:-Werror>)
 endfunction()
 
+# sadr_unity_build(target BATCH n): with SADR_UNITY_BUILD, compile the target's sources as unity
+# sources of n files each, so that the headers they share (CLI11, nlohmann/json, protobuf, yaml-cpp)
+# are parsed once per batch. Only for code off the time-stepping path (CLI, scenes, wire, outputs);
+# the numerical kernels (fluid_core, fluid_backends, ssa_core) stay one object per file.
+# A source with SKIP_UNITY_BUILD_INCLUSION stays on its own.
+function(sadr_unity_build target)
+  cmake_parse_arguments(U "" "BATCH" "" ${ARGN})
+  if(SADR_UNITY_BUILD)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${U_BATCH})
+  endif()
+endfunction()
+
 # sadr_add_gtest(NAME name SOURCES a.cpp ... LIBS lib ... LABELS unit ... [TIMEOUT s])
 # One GoogleTest executable; every TEST in it becomes a ctest test with LABELS.
 # Tests run with the source tree's tests/data and tests/data/refs reachable via

@@ -9,7 +9,7 @@
 namespace sadr::geometry {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kBvhPi = std::numbers::pi;
 
 /// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
 Vec3 closest_on_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
@@ -110,12 +110,12 @@ int Bvh::build(int begin, int end) {
 
 double Bvh::element_winding(const Element& e, Vec3 p) const {
   const Vec3 a = e[0] - p, b = e[1] - p;
-  if (dim_ == 2) return std::atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y) / (2 * kPi);
+  if (dim_ == 2) return std::atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y) / (2 * kBvhPi);
   const Vec3 c = e[2] - p;
   const double la = norm(a), lb = norm(b), lc = norm(c);
   const double num = dot(a, cross(b, c));
   const double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
-  return 2 * std::atan2(num, den) / (4 * kPi);
+  return 2 * std::atan2(num, den) / (4 * kBvhPi);
 }
 
 double Bvh::winding_node(int n, Vec3 p, double beta) const {
@@ -127,8 +127,8 @@ double Bvh::winding_node(int n, Vec3 p, double beta) const {
       // The node as one dipole N at its centre (w = N . r / (4 pi |r|^3), 2D: / (2 pi |r|^2)).
       // The second-order term of Barill et al. was tried and dropped: on curved patches it is of
       // the size of the third and made the error larger (docs/geometry.md).
-      return dim_ == 3 ? dot(node.area_vec, r) / (4 * kPi * r2 * std::sqrt(r2))
-                       : dot(node.area_vec, r) / (2 * kPi * r2);
+      return dim_ == 3 ? dot(node.area_vec, r) / (4 * kBvhPi * r2 * std::sqrt(r2))
+                       : dot(node.area_vec, r) / (2 * kBvhPi * r2);
     }
   }
   if (node.left < 0) {

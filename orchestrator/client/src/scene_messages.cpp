@@ -189,7 +189,7 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
 
 namespace {
 
-std::string deterministic_bytes(const google::protobuf::MessageLite& m) {
+std::string init_bytes(const google::protobuf::MessageLite& m) {
   std::string out;
   {
     google::protobuf::io::StringOutputStream stream(&out);
@@ -214,7 +214,7 @@ std::string scene_meaning_hash(const Scene& scene, const Plan& plan) {
     }
   }
   for (auto& [key, path] : *fluid.mutable_model()->mutable_files()) path = file_hash(path);
-  std::string bytes = deterministic_bytes(fluid) + deterministic_bytes(ssa);
+  std::string bytes = init_bytes(fluid) + init_bytes(ssa);
   // The rest of the meaning as text (appends only: GCC 12 misreports chains of operator+).
   std::string text;
   auto add = [&text](std::initializer_list<std::string_view> parts) {

@@ -24,7 +24,7 @@ constexpr std::array<std::string_view, 5> kConditions{"dirichlet", "neumann", "n
                                                       "inflow"};
 constexpr std::array<std::string_view, 9> kReactionKeys{
     "name", "equation", "reactants", "products", "rate", "reverse_rate", "regions", "kinds", "law"};
-constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
+constexpr std::array<std::string_view, 4> kChemistryKinds{"fluid", "wall", "inlet", "outlet"};
 
 /// The largest stochastic copy number a scene accepts: kMaxExactCount (2^53,
 /// scene_parts.hpp). Above it, the conversion to the SSA's 64-bit counts
@@ -325,7 +325,7 @@ std::vector<ParticleKind> read_kinds(SceneContext& ctx, const Field& f) {
     } else {
       ctx.reader.error(
           YamlReader::child(f, "kinds"),
-          "unknown particle kind '" + k + "' (allowed: " + join_names(kKindNames) + ")");
+          "unknown particle kind '" + k + "' (allowed: " + join_names(kChemistryKinds) + ")");
     }
   }
   return kinds;

@@ -26,7 +26,7 @@ constexpr std::array<std::string_view, 7> kBodyKeys{
 constexpr std::array<std::string_view, 2> kRelaxKeys{"tolerance", "max_iterations"};
 constexpr std::array<std::string_view, 3> kRoles{"fluid", "solid", "region"};
 constexpr std::array<std::string_view, 2> kLattices{"cubic", "hexagonal"};
-constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
+constexpr std::array<std::string_view, 4> kGeometryKinds{"fluid", "wall", "inlet", "outlet"};
 constexpr double kMaxSites = 5e7;
 
 void add_region(SceneContext& ctx, const std::string& name, std::vector<std::uint32_t> members,
@@ -178,8 +178,8 @@ void read_geometry(SceneContext& ctx, const Field& root) {
           b.kinds.push_back(*kind);
         } else {
           std::string msg = "unknown particle kind '" + k + "'";
-          if (auto near = nearest_name(k, kKindNames)) msg += "; did you mean '" + *near + "'?";
-          r.error(kf, msg + " (allowed: " + join_names(kKindNames) + ")");
+          if (auto near = nearest_name(k, kGeometryKinds)) msg += "; did you mean '" + *near + "'?";
+          r.error(kf, msg + " (allowed: " + join_names(kGeometryKinds) + ")");
         }
       }
     }

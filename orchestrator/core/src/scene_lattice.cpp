@@ -21,7 +21,7 @@ namespace {
 constexpr std::array<std::string_view, 4> kParticleKeys{"spacing", "density", "fill", "file"};
 constexpr std::array<std::string_view, 5> kFillKeys{"region", "kind", "density", "mass_factor",
                                                     "velocity"};
-constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
+constexpr std::array<std::string_view, 4> kLatticeKinds{"fluid", "wall", "inlet", "outlet"};
 constexpr double kMaxLatticePoints = 5e7;
 
 struct FillRule {
@@ -100,7 +100,7 @@ void build_lattice(SceneContext& ctx, const Field& particles, double dx, double 
                     "' lists particle ids, which do not exist before the lattice is filled; "
                     "use a region with a shape");
       }
-      if (auto k = r.choice(f, "kind", kKindNames, false, "particle kind")) {
+      if (auto k = r.choice(f, "kind", kLatticeKinds, false, "particle kind")) {
         rule.kind = *parse_kind(*k);
       }
       rule.density = r.number_or(f, "density", density, Bound::kPositive, "mass/length^d");

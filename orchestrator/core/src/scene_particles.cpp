@@ -18,7 +18,7 @@ constexpr std::array<std::string_view, 6> kShapes{"box",     "sphere",  "disk",
 constexpr std::array<std::string_view, 11> kRegionKeys{
     "name",         "shape",        "lower", "upper", "center", "radius",
     "inner_radius", "outer_radius", "axis",  "kinds", "ids"};
-constexpr std::array<std::string_view, 4> kKindNames{"fluid", "wall", "inlet", "outlet"};
+constexpr std::array<std::string_view, 4> kParticleKinds{"fluid", "wall", "inlet", "outlet"};
 constexpr std::array<std::string_view, 3> kAxisNames{"x", "y", "z"};
 
 std::vector<std::string_view> shape_keys(RegionShape shape) {
@@ -179,8 +179,8 @@ void read_regions(SceneContext& ctx, const Field& root) {
         if (auto kind = parse_kind(k)) {
           rg.kinds.push_back(*kind);
         } else {
-          r.error(YamlReader::child(f, "kinds"),
-                  "unknown particle kind '" + k + "' (allowed: " + join_names(kKindNames) + ")");
+          r.error(YamlReader::child(f, "kinds"), "unknown particle kind '" + k + "' (allowed: " +
+                                                     join_names(kParticleKinds) + ")");
         }
       }
     }
