@@ -239,7 +239,7 @@ def test_a_particle_file_built_in_python(tmp_path, monkeypatch):
 
 
 def test_model_knows_every_key_of_the_loader():
-    """The builder's fields are the scene loader's keys (orchestrator/core/src),
+    """The builder's fields are the scene loader's keys (orchestrator/scene/src),
     so nothing the format takes needs ``extra``."""
     src = "\n".join(p.read_text() for p in (REPO / "orchestrator" / "core" / "src").glob("scene*.cpp"))
     arrays = {m[0]: re.findall(r'"([^"]+)"', m[1])
