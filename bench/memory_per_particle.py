@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Peak resident memory (VmHWM) of sadr, fluid_service and ssa_service per
 particle, by backend and dimension: two lattice sizes each, the slope is the
-bytes per particle that orchestrator/core/src/work_estimate.cpp uses.
+bytes per particle that orchestrator/scene/src/machine_limits.cpp uses.
 
     bench/memory_per_particle.py BUILD/bin [--sizes 50000 200000]
 

@@ -19,7 +19,7 @@ run.json, and prints per example:
 
 The medians per backend and dimension are the constants of
 fluid_service/backends/*/NAME_schema.cpp (CostPerParticle) and
-orchestrator/core/include/sadr/orchestrator/work_estimate.hpp.
+orchestrator/run/include/sadr/orchestrator/work_estimate.hpp.
 """
 import argparse
 import json

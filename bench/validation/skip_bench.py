@@ -3,7 +3,7 @@
 """Run time of a scene with and without a skip of the plan, in interleaved pairs.
 
 The skip measured here is "coupling step skipped: nothing moves; SSA advances
-frame to frame" (orchestrator/core plan.cpp, splitting.hpp FrameToFrame). The
+frame to frame" (orchestrator/run plan.cpp, splitting.hpp FrameToFrame). The
 build without it is any build from before it (by default the session-start
 release build, /work/baseline/build/release/bin); the build with it is this
 tree's. Pairs alternate which build runs first. Cost is the CPU time (user +

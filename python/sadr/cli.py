@@ -53,7 +53,7 @@ EXIT_CODES: dict[int, type[SadrError]] = {
     1: InvalidInput, 2: UsageError, 3: ServiceFailure, 4: NumericalFailure, 5: IoFailure,
     130: Interrupted}
 """The CLI's exit codes (the ExitCode enum of
-orchestrator/runs/include/sadr/orchestrator/exit_codes.hpp; tests/python/test_rules.py
+orchestrator/campaign/include/sadr/orchestrator/exit_codes.hpp; tests/python/test_rules.py
 compares them) and the exception of each. The one
 table in this package: every failing `sadr` call raises through error_for()."""
 

@@ -9,7 +9,7 @@
 
 Segments are separated by '.'; a selector ``[...]`` follows a key. Setting a
 path adds missing map keys, as the CLI does; a missing list item is an error.
-The rules mirror the CLI's (orchestrator/core/src/scene_override.cpp): a
+The rules mirror the CLI's (orchestrator/scene/src/scene_override.cpp): a
 selector made of at most 9 digits is an index, anything else a name.
 
 Also the YAML reading and writing of scenes: numbers as YAML 1.2 reads them

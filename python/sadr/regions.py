@@ -5,7 +5,7 @@ unions (``a | b``). A region is evaluated on each frame's own positions, so
 it follows moving particles.
 
 Boundaries are inclusive within the tolerance of the scene loader
-(``Region::contains`` and ``SceneContext::tolerance`` in orchestrator/core):
+(``Region::contains`` and ``SceneContext::tolerance`` in orchestrator/scene):
 an absolute tolerance of 1e-9 times the largest box length, so that a
 particle on a face is inside in Python as in the product. The box is the
 run's (``Frame.box_extent``, set by sadr.Run from its scene); a frame read on

@@ -4,7 +4,7 @@
 
     gen_scene_keys.py [--check]
 
-The scene loader (orchestrator/core/src/scene*.cpp) refuses every key that is not in
+The scene loader (orchestrator/scene/src/scene*.cpp) refuses every key that is not in
 the table of its section (`kSpeciesKeys`, `kFluidKeys`, ...). This page lists those
 tables as they are in the code, each with its source line. With --check it fails
 when the page differs from what the code gives, or when a key of a table is not
@@ -50,7 +50,7 @@ SECTIONS = [
 def tables():
     """{name: (keys, "file:line")} of every `kNameKeys{...}` in the loader's sources."""
     out = {}
-    for path in sorted((ROOT / "orchestrator" / "core" / "src").glob("scene*.cpp")):
+    for path in sorted((ROOT / "orchestrator" / "scene" / "src").glob("scene*.cpp")):
         text = path.read_text()
         for m in re.finditer(r"k(\w+Keys)\{([^}]*)\}", text):
             line = text.count("\n", 0, m.start()) + 1

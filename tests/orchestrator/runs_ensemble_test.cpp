@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sadr::orchestrator_runs: the reorder buffer, the ensemble pool (out-of-order
+// sadr::orchestrator_campaign: the reorder buffer, the ensemble pool (out-of-order
 // completion added in order), and the ensemble manifest (write, read, resume).
 #include <gtest/gtest.h>
 #include <unistd.h>

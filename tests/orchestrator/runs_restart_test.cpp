@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sadr::orchestrator_runs: exit codes, the restart policy (--restart-on-failure:
+// sadr::orchestrator_campaign: exit codes, the restart policy (--restart-on-failure:
 // service failures only, from the last checkpoint) and the retry policy
 // (--retries of ensemble realizations).
 #include <gtest/gtest.h>

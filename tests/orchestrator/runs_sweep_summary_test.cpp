@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// sadr::orchestrator_runs: the aggregation at the end of a sweep (done,
+// sadr::orchestrator_campaign: the aggregation at the end of a sweep (done,
 // incomplete and refused points, the keep policy, observables.csv) and the
 // figures and text of `sadr summary`.
 #include <gtest/gtest.h>

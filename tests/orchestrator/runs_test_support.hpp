@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Scratch folders and file reading for the tests of orchestrator/runs.
+// Scratch folders and file reading for the tests of orchestrator/campaign.
 #pragma once
 
 #include <unistd.h>

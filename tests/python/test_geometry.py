@@ -25,9 +25,9 @@ def cpp_arrays(text):
 
 def test_the_classes_have_the_loaders_keys():
     """Every key of the geometry section is a field of one class, as the scene
-    loader (orchestrator/core/src/scene_geometry*.cpp) lists them."""
+    loader (orchestrator/scene/src/scene_geometry*.cpp) lists them."""
     src = "\n".join(p.read_text() for p in
-                    sorted((REPO / "orchestrator" / "core" / "src").glob("scene_geometry*.cpp")))
+                    sorted((REPO / "orchestrator" / "scene" / "src").glob("scene_geometry*.cpp")))
     arrays = cpp_arrays(src)
     assert set(arrays["GeometryKeys"]) == set(g.Geometry.keys())
     assert set(arrays["BodyKeys"]) == set(g.Body.keys())

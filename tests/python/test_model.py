@@ -239,9 +239,9 @@ def test_a_particle_file_built_in_python(tmp_path, monkeypatch):
 
 
 def test_model_knows_every_key_of_the_loader():
-    """The builder's fields are the scene loader's keys (orchestrator/core/src),
+    """The builder's fields are the scene loader's keys (orchestrator/scene/src),
     so nothing the format takes needs ``extra``."""
-    src = "\n".join(p.read_text() for p in (REPO / "orchestrator" / "core" / "src").glob("scene*.cpp"))
+    src = "\n".join(p.read_text() for p in (REPO / "orchestrator" / "scene" / "src").glob("scene*.cpp"))
     arrays = {m[0]: re.findall(r'"([^"]+)"', m[1])
               for m in re.findall(r"k(\w*Keys)\{([^}]*)\}", src)}
     import dataclasses
@@ -439,7 +439,7 @@ def test_tutorial_sweep_built_in_python_equals_its_yaml(tmp_path):
 
 
 def test_sweep_file_has_the_loaders_keys():
-    src = (REPO / "orchestrator" / "core" / "src" / "sweep_spec.cpp").read_text()
+    src = (REPO / "orchestrator" / "scene" / "src" / "sweep_spec.cpp").read_text()
     arrays = [re.findall(r'"([^"]+)"', m) for m in re.findall(r"kKeys\{([^}]*)\}", src)]
     from sadr import sweep_file
 

@@ -18,7 +18,7 @@ STATIC = EXAMPLES / "static_reaction_diffusion.yaml"
 
 def test_exit_codes_are_the_cli_enum():
     """EXIT_CODES is the ExitCode enum of the CLI's source, code for code."""
-    header = REPO / "orchestrator" / "runs" / "include" / "sadr" / "orchestrator" / "exit_codes.hpp"
+    header = REPO / "orchestrator" / "campaign" / "include" / "sadr" / "orchestrator" / "exit_codes.hpp"
     text = header.read_text()
     enum = dict((name, int(code)) for name, code in re.findall(r"kExit(\w+) = (\d+),", text))
     assert enum.pop("Ok") == 0

@@ -13,10 +13,10 @@
 #include "sadr/orchestrator/progress.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
 #include "sadr/orchestrator/scene_messages.hpp"
+#include "sadr/orchestrator/scoped_timer.hpp"
 #include "sadr/orchestrator/seeds.hpp"
 #include "sadr/orchestrator/service_clients.hpp"
 #include "sadr/orchestrator/splitting_loop.hpp"
-#include "scoped_timer.hpp"
 
 namespace sadr::orchestrator {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "sadr/common/input_file.hpp"
 #include "sadr/common/status.hpp"
-#include "sadr/orchestrator/work_estimate.hpp"
+#include "sadr/orchestrator/machine_limits.hpp"
 #include "scene_parts.hpp"
 
 namespace sadr::orchestrator::detail {

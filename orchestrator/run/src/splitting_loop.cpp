@@ -11,7 +11,7 @@
 
 #include "sadr/common/log.hpp"
 #include "sadr/common/status.hpp"
-#include "scoped_timer.hpp"
+#include "sadr/orchestrator/scoped_timer.hpp"
 
 namespace sadr::orchestrator {
 
