@@ -51,8 +51,8 @@ Result run(int per_axis, int nspecies, int steps, bool uniform, double skin, int
     SpeciesSpec sp;
     char name[16];  // not "S" + to_string(s): GCC 12 -O1+ASan warns -Wrestrict (false positive)
     std::snprintf(name, sizeof name, "S%d", s);
-    sp.name = name;
-    sp.diffusivity = 0.5;  // kappa
+    sp.def.name = name;
+    sp.def.diffusivity = 0.5;  // kappa
     m.species.push_back(sp);
   }
   const std::size_t n = static_cast<std::size_t>(per_axis) * per_axis * per_axis;

@@ -55,12 +55,12 @@ double ssa_ns(const Case& c, int reps) {
   Model m;
   m.species = {{"A", 0}, {"B", 0}, {"C", 0}};
   Reaction rx;
-  rx.name = "r";
+  rx.def.name = "r";
   rx.reactants = c.law ? std::vector<std::pair<int, int>>{{0, 1}}
                        : std::vector<std::pair<int, int>>{{0, 1}, {1, 1}};
   rx.products = {{2, 1}};
-  rx.rate = 0.1;
-  rx.law = c.law;
+  rx.def.rate = 0.1;
+  rx.def.law = c.law;
   m.reactions = {rx};
   m.box.dimension = 2;
   m.box.hi = {kSide * 1.0, kSide * 1.0, 1.0};
@@ -100,12 +100,12 @@ double transport_ns(const Case& c, int reps) {
   m.species.push_back({"B", 0.0, true, {}, {}});
   m.species.push_back({"C", 0.0, true, {}, {}});
   ReactionSpec rx;
-  rx.name = "r";
+  rx.def.name = "r";
   rx.reactants = c.law ? std::vector<std::pair<int, int>>{{0, 1}}
                        : std::vector<std::pair<int, int>>{{0, 1}, {1, 1}};
   rx.products = {{2, 1}};
-  rx.rate = 0.1;
-  rx.law = c.law;
+  rx.def.rate = 0.1;
+  rx.def.law = c.law;
   m.reactions = {rx};
   sadr::ParticleState p;
   p.dimension = 2;

@@ -54,7 +54,7 @@ SsaGraph build_ssa_graph(const Scene& scene, const Plan& plan) {
 
 std::string edges_csv(const SsaGraph& g) {
   std::string out = "source,target,source_kind,target_kind,weight";
-  for (const auto& s : g.model.species) out += ",rate_" + s.name;
+  for (const auto& s : g.model.species) out += ",rate_" + s.def.name;
   out += "\n";
   const auto& gr = g.graph;
   for (std::size_t i = 0; i < gr.size(); ++i) {
@@ -71,7 +71,7 @@ std::string edges_csv(const SsaGraph& g) {
       append_number(out, e.weight);
       for (const auto& s : g.model.species) {
         out += ',';
-        append_number(out, s.diffusivity * e.weight);
+        append_number(out, s.def.diffusivity * e.weight);
       }
       out += '\n';
     }
@@ -120,7 +120,7 @@ int cmd_graph(const GraphCommandOptions& o) {
     j["convention"] = std::string(ssa::to_string(g.model.convention));
     nlohmann::json species = nlohmann::json::array();
     for (const auto& s : g.model.species) {
-      species.push_back({{"name", s.name}, {"diffusivity", s.diffusivity}});
+      species.push_back({{"name", s.def.name}, {"diffusivity", s.def.diffusivity}});
     }
     j["species"] = species;
     j["voxels"] = {{"volume", g.graph.volume}, {"wall", g.graph.is_wall}};

@@ -68,8 +68,8 @@ inline Scene make_scene(const BackendCase& bc, std::uint64_t seed) {
   s.model.temperature = bc.temperature;
   s.model.seed = seed;
   SpeciesSpec sp;
-  sp.name = "A";
-  sp.diffusivity = bc.diffusivity;
+  sp.def.name = "A";
+  sp.def.diffusivity = bc.diffusivity;
   s.model.species.push_back(sp);
   const std::size_t n = static_cast<std::size_t>(per_axis * per_axis * per_axis);
   s.state.dimension = 3;

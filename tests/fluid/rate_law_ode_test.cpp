@@ -46,10 +46,10 @@ std::vector<double> run(const rate_law::Definition& law, double s0, double e0, d
   m.species.push_back({"P", 0.0, true, {}, {}});
   m.species.push_back({"E", 0.0, true, {}, {}});
   ReactionSpec rx;
-  rx.name = "convert";
+  rx.def.name = "convert";
   rx.reactants = {{0, 1}};
   rx.products = {{1, 1}};
-  rx.law = law;
+  rx.def.law = law;
   m.reactions.push_back(rx);
   m.max_time_step = 1e-3;
   m.force_time_step = true;
@@ -95,9 +95,9 @@ TEST(RateLawOde, ALawOfTimeMatchesItsExactSolutionOnStaticAndSdpd) {
     m.smoothing_length = 2.0;
     m.species.push_back({"C", 0.0, true, {}, {}});
     ReactionSpec rx;
-    rx.name = "decay";
+    rx.def.name = "decay";
     rx.reactants = {{0, 1}};
-    rx.law = law;
+    rx.def.law = law;
     m.reactions.push_back(rx);
     m.max_time_step = 1e-3;
     m.force_time_step = true;

@@ -101,8 +101,8 @@ TEST(MorrisWalls, DirichletSpeciesPairTermIsMultipliedByBeta) {
   FluidModel model;
   model.box.dimension = 2;
   SpeciesSpec theta;
-  theta.name = "theta";
-  theta.diffusivity = 0.5;
+  theta.def.name = "theta";
+  theta.def.diffusivity = 0.5;
   theta.default_wall = {WallCondition::Type::kDirichlet, 1.0};
   model.species.push_back(theta);
   ParticleState state;

@@ -255,9 +255,9 @@ TEST(SdpdOpenBoundary, ReactionSitesFollowTheParticlesKinds) {
   }
   c.model.species.push_back({"A", 0.0, true, {}, {}});  // kappa = 0: only the reaction acts
   ReactionSpec r;
-  r.name = "decay";
+  r.def.name = "decay";
   r.reactants = {{0, 1}};
-  r.rate = 1.0;  // kinds empty = fluid only
+  r.def.rate = 1.0;  // kinds empty = fluid only
   c.model.reactions.push_back(r);
   SdpdBackend b;
   b.initialize(c.model, c.particles, {std::vector<double>(c.particles.size(), 1.0)});

@@ -218,7 +218,7 @@ TEST(StaticBackend, SubstepBoundNamesTheReactionLimit) {
   EXPECT_EQ(capped.current_substep_bound().dt, m.max_time_step);
 }
 
-// --- reaction sites (ReactionSpec::kinds / ::particles) and WallCondition::kFree -------------
+// --- reaction sites (ReactionSpec::def.kinds / ::particles) and WallCondition::kFree -------------
 
 // 1D chain of `n` fluid particles with `layers` wall layers at each end, one species.
 FluidModel chain_model(ParticleState& p, int n, int layers, double kappa, WallCondition wall) {
@@ -252,7 +252,7 @@ TEST(ReactionSites, DefaultReactionsFireOnFluidOnlyKindsSelectWalls) {
     ParticleState p;
     FluidModel m = chain_model(p, 10, 3, 0.0, {});
     ReactionSpec r{"make", {}, {{0, 1}}, 1.0, {}, {}};
-    if (on_walls) r.kinds = {ParticleKind::kWall};
+    if (on_walls) r.def.kinds = {ParticleKind::kWall};
     m.reactions.push_back(r);
     StaticBackend b;
     b.initialize(m, p, {std::vector<double>(p.size(), 0.0)});

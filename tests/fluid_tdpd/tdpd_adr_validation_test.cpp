@@ -58,8 +58,8 @@ TEST(TdpdAdrValidation, PoiseuilleAgainstFiniteVolume) {
   model.wall_regions[1].inward_normal = {0, -1, 0};
   for (int s = 0; s < 3; ++s) {
     SpeciesSpec sp;
-    sp.name = "Pe" + std::to_string(static_cast<int>(kPe[s]));
-    sp.diffusivity = (kU * h / kPe[s] - 0.0187) / 0.771;
+    sp.def.name = "Pe" + std::to_string(static_cast<int>(kPe[s]));
+    sp.def.diffusivity = (kU * h / kPe[s] - 0.0187) / 0.771;
     sp.wall_conditions = {{WallCondition::Type::kNoFlux, 0.0},
                           {WallCondition::Type::kDirichlet, 1.0}};
     model.species.push_back(sp);

@@ -124,8 +124,8 @@ TEST(TdpdPairs, ForcesFluxesAndDensitiesMatchADirectSum) {
   m.seed = 4242;
   for (const char* name : {"A", "B"}) {
     SpeciesSpec s;
-    s.name = name;
-    s.diffusivity = 0.4;
+    s.def.name = name;
+    s.def.diffusivity = 0.4;
     m.species.push_back(s);
   }
   const std::size_t n = 400;

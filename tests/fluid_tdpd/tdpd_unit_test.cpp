@@ -29,8 +29,8 @@ struct Pair {
     model.reference_density = 4.0;
     model.temperature = kbt;
     SpeciesSpec a;
-    a.name = "A";
-    a.diffusivity = 0.3;  // kappa
+    a.def.name = "A";
+    a.def.diffusivity = 0.3;  // kappa
     model.species.push_back(a);
     state.dimension = 3;
     state.resize(2, true);
@@ -150,8 +150,8 @@ TEST(TdpdUnit, ReadStateReportsUnitMassesAndKernelDensity) {
 // refused it): the sub-steps are the automatic ones; force_time_step takes it as the sub-step.
 TEST(TdpdUnit, MaxTimeStepAboveTheDiffusionLimitIsAnUpperBoundUnlessForced) {
   Pair p(0.9, 0.0);
-  p.model.species[0].diffusivity = 50.0;  // li2015 eq 13 limit ~ 1/(4 * 50 * 1.65) = 3e-3
-  p.model.max_time_step = 0.0;            // automatic: sub-steps below the limit
+  p.model.species[0].def.diffusivity = 50.0;  // li2015 eq 13 limit ~ 1/(4 * 50 * 1.65) = 3e-3
+  p.model.max_time_step = 0.0;                // automatic: sub-steps below the limit
   TdpdBackend b;
   b.initialize(p.model, p.state, p.conc);
   const auto lim = b.current_limits();

@@ -48,9 +48,9 @@ struct Slab {
     model.seed = seed;
     for (std::size_t s = 0; s < kappas.size(); ++s) {
       SpeciesSpec sp;
-      sp.name = "S";
-      sp.name += std::to_string(s);
-      sp.diffusivity = kappas[s];
+      sp.def.name = "S";
+      sp.def.name += std::to_string(s);
+      sp.def.diffusivity = kappas[s];
       model.species.push_back(sp);
     }
     test::fill_jittered_lattice(state, nx, ny, ny, kSpacing, seed, /*thermal=*/false);

@@ -49,8 +49,8 @@ struct Channel {
     model.seed = seed;
     model.backend_parameters["effective_walls"] = 1.0;
     SpeciesSpec sp;
-    sp.name = "C";
-    sp.diffusivity = kappa;
+    sp.def.name = "C";
+    sp.def.diffusivity = kappa;
     model.species.push_back(sp);
     test::fill_jittered_lattice(state, nx, ny, ny, kSpacing, seed, /*thermal=*/true);
     state.densities.assign(state.size(), 4.0);

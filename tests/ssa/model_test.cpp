@@ -33,19 +33,19 @@ TEST(ModelValidate, BadValuesNameFieldAndValue) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   {
     Model m = good_model();
-    m.reactions[0].rate = -2.5;
+    m.reactions[0].def.rate = -2.5;
     const auto msg = message_of([&] { m.validate(); });
     EXPECT_NE(msg.find("reactions[0] 'bind'.rate"), std::string::npos) << msg;
     EXPECT_NE(msg.find("-2.5"), std::string::npos) << msg;
   }
   {
     Model m = good_model();
-    m.reactions[0].rate = nan;
+    m.reactions[0].def.rate = nan;
     EXPECT_NE(message_of([&] { m.validate(); }).find("nan"), std::string::npos);
   }
   {
     Model m = good_model();
-    m.species[1].diffusivity = std::numeric_limits<double>::infinity();
+    m.species[1].def.diffusivity = std::numeric_limits<double>::infinity();
     const auto msg = message_of([&] { m.validate(); });
     EXPECT_NE(msg.find("species[1].diffusivity"), std::string::npos) << msg;
     EXPECT_NE(msg.find("inf"), std::string::npos) << msg;

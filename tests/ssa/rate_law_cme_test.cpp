@@ -35,9 +35,9 @@ ParticleState voxel(double volume) {
 /// S -> 0 with the given law; E (species 1) is a catalyst the law may read.
 Reaction decay(rate_law::Definition law) {
   Reaction rx;
-  rx.name = "decay";
+  rx.def.name = "decay";
   rx.reactants = {{0, 1}};
-  rx.law = std::move(law);
+  rx.def.law = std::move(law);
   return rx;
 }
 
@@ -202,9 +202,9 @@ TEST(RateLawCme, CachedLawPropensitiesStayEqualToRecomputedOnes) {
   Reaction mm = decay(michaelis(0.8, 5));
   mm.products = {{2, 1}};
   Reaction h = decay(hill(2, 3, 2));
-  h.name = "hill";
+  h.def.name = "hill";
   h.reactants = {{2, 1}};
-  h.law->of = std::string("P");
+  h.def.law->of = std::string("P");
   h.products = {{0, 1}};
   Reaction bind{"bind", {{1, 1}, {2, 1}}, {{1, 1}}, 0.05, {}, {}};
   m.reactions = {mm, h, bind};
@@ -231,7 +231,8 @@ TEST(RateLawCme, CachedLawPropensitiesStayEqualToRecomputedOnes) {
   RecordProperty("checked", std::to_string(checked));
 }
 
-// Boundary fluxes (Reaction::areas, scene `boundary_fluxes`): the propensity is A_i j(X_i / V_i).
+// Boundary fluxes (Reaction::def.boundary_areas, scene `boundary_fluxes`): the propensity is A_i
+// j(X_i / V_i).
 
 rate_law::Definition constant_flux(double q) {
   rate_law::Definition d;
@@ -250,11 +251,11 @@ TEST(BoundaryFluxCme, ConstantInfluxGivesPoissonCountsOfMeanAqt) {
   m.box = testing::make_box(1, 6.0, false);
   m.smoothing_length = 1.5;
   Reaction rx;
-  rx.name = "influx";
+  rx.def.name = "influx";
   rx.products = {{0, 1}};
-  rx.law = constant_flux(4.0);
+  rx.def.law = constant_flux(4.0);
   rx.voxels = {1, 2, 4};
-  rx.areas = {0.5, 1.0, 1.5};
+  rx.def.boundary_areas = {0.5, 1.0, 1.5};
   m.reactions = {rx};
   const std::vector<double> times = {0.5, 2.0};
   const int r_count = 2000;
@@ -273,7 +274,8 @@ TEST(BoundaryFluxCme, ConstantInfluxGivesPoissonCountsOfMeanAqt) {
   double worst = 0;
   for (std::size_t t = 0; t < times.size(); ++t) {
     for (std::size_t k = 0; k < 3; ++k) {
-      const double mean = rx.areas[k] * 4.0 * times[t];  // Poisson: var = mean, mu4 = m + 3 m^2
+      const double mean =
+          rx.def.boundary_areas[k] * 4.0 * times[t];  // Poisson: var = mean, mu4 = m + 3 m^2
       const Moments& mo = mom[t * 3 + k];
       const double z_mean = (mo.mean() - mean) / std::sqrt(mean / r_count);
       const double z_var = testing::variance_z(mo.var(), mean, mean + 3 * mean * mean, r_count);
@@ -296,8 +298,8 @@ TEST(BoundaryFluxCme, MichaelisMentenOutfluxMatchesFsp) {
   const std::int64_t s0 = 30, e0 = 3;
   Reaction rx = decay(michaelis(0.8, 5));
   rx.voxels = {0};
-  rx.areas = {area};
-  const rate_law::RateLaw f(*rx.law, {"S", "E"});
+  rx.def.boundary_areas = {area};
+  const rate_law::RateLaw f(*rx.def.law, {"S", "E"});
   std::vector<double> a(s0 + 1);
   for (std::int64_t x = 0; x <= s0; ++x) {
     const double c[2] = {static_cast<double>(x) / volume, static_cast<double>(e0) / volume};
@@ -338,13 +340,13 @@ TEST(BoundaryFluxCme, CachedBoundaryPropensitiesStayEqualToRecomputedOnes) {
   m.box = testing::make_box(2, 4.0, true);
   m.smoothing_length = 1.5;
   Reaction out = decay(michaelis(0.8, 5));
-  out.name = "uptake";
+  out.def.name = "uptake";
   out.voxels = {0, 1, 2, 3};
-  out.areas = {0.25, 0.5, 1.0, 2.0};
+  out.def.boundary_areas = {0.25, 0.5, 1.0, 2.0};
   Reaction in;
-  in.name = "supply";
+  in.def.name = "supply";
   in.products = {{0, 1}};
-  in.rate = 2.0;
+  in.def.rate = 2.0;
   m.reactions = {out, in};
   NsmSolver s(m, 78);
   s.update_graph(testing::make_lattice(2, 4, 1.0));
@@ -354,7 +356,7 @@ TEST(BoundaryFluxCme, CachedBoundaryPropensitiesStayEqualToRecomputedOnes) {
   s.set_counts(1, e0);
   const RdmeState& st = s.state();
   const ReactionTable& t = st.reactions();
-  const rate_law::RateLaw f(*out.law, {"S", "E"});
+  const rate_law::RateLaw f(*out.def.law, {"S", "E"});
   std::size_t checked = 0;
   for (double time = 0.05; time <= 6.0; time += 0.05) {
     s.advance(time);
@@ -363,7 +365,7 @@ TEST(BoundaryFluxCme, CachedBoundaryPropensitiesStayEqualToRecomputedOnes) {
       const double cached = st.reaction_propensity(0, i);
       EXPECT_EQ(cached, t.propensity(0, i, st.all_counts().data(), 16)) << i << " t=" << time;
       const double c[2] = {x[i] / 1.0, e[i] / 1.0};  // V = 1
-      EXPECT_EQ(cached, i < 4 && x[i] > 0 ? out.areas[i] * f.density(c, 0) : 0.0) << i;
+      EXPECT_EQ(cached, i < 4 && x[i] > 0 ? out.def.boundary_areas[i] * f.density(c, 0) : 0.0) << i;
       ++checked;
     }
   }

@@ -88,7 +88,7 @@ TEST(Rescale, TwoVoxelDiffusionOnAMovingGraphGivesTheBinomialLaw) {
   p.positions[0] = 1.0;
   p.positions[3] = 1.0 + 0.3 * h;
   const double w_near = DiffusionGraph::build(m, p).edges[0].weight;
-  m.species[0].diffusivity = 0.5 / (tau * w_near);
+  m.species[0].def.diffusivity = 0.5 / (tau * w_near);
   std::vector<double> k_of_step(22, 0.0);
   std::vector<Moments> mom(checkpoints.size());
   for (int r = 0; r < r_count; ++r) {
@@ -104,7 +104,7 @@ TEST(Rescale, TwoVoxelDiffusionOnAMovingGraphGivesTheBinomialLaw) {
         // Copies: Edge is packed to 12 bytes, so its weight may sit misaligned.
         const double w01 = g.edges[0].weight, w10 = g.edges[1].weight;
         ASSERT_EQ(w01, w10);  // equal masses and densities
-        k_of_step[k] = m.species[0].diffusivity * w01;
+        k_of_step[k] = m.species[0].def.diffusivity * w01;
       }
       s.advance(k * tau);
       if (c < checkpoints.size() && k == checkpoints[c]) {

@@ -92,7 +92,7 @@ TEST(Snapshot, RejectsCorruptionAndOtherModels) {
   EXPECT_THROW(a.restore(blob.substr(0, blob.size() - 9)), sadr::InvalidArgument);
   EXPECT_THROW(a.restore("garbage"), sadr::InvalidArgument);
   Model other = rich_model();
-  other.reactions[0].rate = 0.31;
+  other.reactions[0].def.rate = 0.31;
   NsmSolver c(other, 1);
   EXPECT_THROW(c.restore(blob), sadr::InvalidArgument);
   EXPECT_NO_THROW(a.restore(blob));

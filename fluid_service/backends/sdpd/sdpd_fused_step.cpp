@@ -130,7 +130,7 @@ double SdpdBackend::fused_substep(std::uint64_t step_index, std::uint64_t key, d
   const double sdt = std::sqrt(dt);
   for (std::size_t s = 0; s < y_.c.size(); ++s) {
     ytmp_.c[s] = y_.c[s];
-    if (!model_.species[s].deterministic) continue;
+    if (!model_.species[s].deterministic()) continue;
     for (std::size_t i = 0; i < n; ++i) ytmp_.c[s][i] += dt * r0_.dc[s][i];
   }
   if (moved != 0) rebuild_neighbors(ytmp_.x);
@@ -184,7 +184,7 @@ double SdpdBackend::fused_substep(std::uint64_t step_index, std::uint64_t key, d
     vmax2_end = std::max(vmax2_end, q.vmax2);
   }
   for (std::size_t s = 0; s < y_.c.size(); ++s) {
-    if (!model_.species[s].deterministic) continue;
+    if (!model_.species[s].deterministic()) continue;
     for (std::size_t i = 0; i < n; ++i) y_.c[s][i] += 0.5 * dt * (r0_.dc[s][i] + r1_.dc[s][i]);
   }
   y_moved_ = moved_y;

@@ -110,7 +110,7 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
   }
   for (std::size_t s = 0; s < y_.c.size(); ++s) {
     ytmp_.c[s] = y_.c[s];
-    if (!model_.species[s].deterministic) continue;
+    if (!model_.species[s].deterministic()) continue;
     for (std::size_t i = 0; i < n; ++i) ytmp_.c[s][i] += dt * r0_.dc[s][i];
   }
   species_.set_time(time_ + dt);
@@ -132,7 +132,7 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
     pbox_.wrap(&y_.x[3 * i]);
   }
   for (std::size_t s = 0; s < y_.c.size(); ++s) {
-    if (!model_.species[s].deterministic) continue;
+    if (!model_.species[s].deterministic()) continue;
     for (std::size_t i = 0; i < n; ++i) y_.c[s][i] += 0.5 * dt * (r0_.dc[s][i] + r1_.dc[s][i]);
   }
   return dt;

@@ -55,7 +55,7 @@ void TdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
   skin_half2_ = 0.25 * (list_cut - rc) * (list_cut - rc);
   species_.setup(model, initial);
   kappa_.assign(ns, 0.0);
-  for (std::size_t s = 0; s < ns; ++s) kappa_[s] = model.species[s].diffusivity;
+  for (std::size_t s = 0; s < ns; ++s) kappa_[s] = model.species[s].def.diffusivity;
   kinds_ = initial.kinds;
   ids_ = initial.ids;
   wall_.assign(n_, 0);

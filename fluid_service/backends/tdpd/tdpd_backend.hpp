@@ -40,7 +40,7 @@ namespace sadr::fluid {
 
 /// tDPD parameters that FluidModel has no field for. FluidModel supplies the rest:
 /// temperature = k_B T [energy], smoothing_length = r_c [length], reference_density = number
-/// density rho [1/length^d] (used only by the stability limits), SpeciesSpec::diffusivity =
+/// density rho [1/length^d] (used only by the stability limits), SpeciesSpec::def.diffusivity =
 /// Fickian friction coefficient kappa [1/time] (NOT the effective D; see kappa_for()).
 struct TdpdParameters {
   double a = 18.75;     ///< conservative force amplitude a_ij [force]

@@ -130,7 +130,7 @@ void check_health(std::string_view backend, const HealthView& h, std::uint64_t s
   }
   for (std::size_t s = 0; s < h.c.size(); ++s) {
     if (!species_ok(s, i))
-      fail("concentration[" + h.species[s].name + "]", h.c[s][i], "non-finite");
+      fail("concentration[" + h.species[s].def.name + "]", h.c[s][i], "non-finite");
   }
 }
 

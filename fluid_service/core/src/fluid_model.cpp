@@ -3,12 +3,32 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "sadr/common/status.hpp"
 #include "sadr/fluid/kernel.hpp"
 #include "sadr/model/chemistry.hpp"
 
 namespace sadr::fluid {
+
+SpeciesSpec::SpeciesSpec(std::string name, double diffusivity, bool deterministic,
+                         WallCondition default_wall, std::vector<WallCondition> wall_conditions)
+    : default_wall(default_wall), wall_conditions(std::move(wall_conditions)) {
+  def.name = std::move(name);
+  def.stochastic = !deterministic;
+  def.diffusivity = diffusivity;
+}
+
+ReactionSpec::ReactionSpec(std::string name, std::vector<std::pair<int, int>> reactants,
+                           std::vector<std::pair<int, int>> products, double rate,
+                           std::vector<ParticleKind> kinds, std::vector<std::uint32_t> particles)
+    : reactants(std::move(reactants)),
+      products(std::move(products)),
+      particles(std::move(particles)) {
+  def.name = std::move(name);
+  def.rate = rate;
+  def.kinds = std::move(kinds);
+}
 
 KernelType parse_kernel(std::string_view name) {
   if (name == "lucy") return KernelType::kLucy;
@@ -56,20 +76,20 @@ void FluidModel::validate() const {
   for (int s = 0; s < ns; ++s) {
     const auto& sp = species[s];
     const std::string f = "species[" + std::to_string(s) + "]";
-    if (sp.name.empty()) p.add_text(f + ".name", "must not be empty");
+    if (sp.def.name.empty()) p.add_text(f + ".name", "must not be empty");
     for (int t = 0; t < s; ++t) {
-      if (species[t].name == sp.name && !sp.name.empty())
-        p.add_text(f + ".name", "duplicate '" + sp.name + "'");
+      if (species[t].def.name == sp.def.name && !sp.def.name.empty())
+        p.add_text(f + ".name", "duplicate '" + sp.def.name + "'");
     }
-    p.finite_nonneg(f + ".diffusivity", sp.diffusivity);
+    p.finite_nonneg(f + ".diffusivity", sp.def.diffusivity);
     if (!sp.wall_conditions.empty() && sp.wall_conditions.size() != wall_regions.size()) {
       p.add(f + ".wall_conditions size", static_cast<double>(sp.wall_conditions.size()),
             "0 or the number of wall_regions (" + std::to_string(wall_regions.size()) + ")");
     }
     auto check_wc = [&](const WallCondition& wc, const std::string& name) {
       if (!std::isfinite(wc.value)) p.add(name + ".value", wc.value, "finite");
-      if (wc.type == WallCondition::Type::kNeumann && sp.diffusivity <= 0) {
-        p.add(f + ".diffusivity", sp.diffusivity, "a Neumann wall needs diffusivity > 0");
+      if (wc.type == WallCondition::Type::kNeumann && sp.def.diffusivity <= 0) {
+        p.add(f + ".diffusivity", sp.def.diffusivity, "a Neumann wall needs diffusivity > 0");
       }
     };
     check_wc(sp.default_wall, f + ".default_wall");
@@ -81,18 +101,18 @@ void FluidModel::validate() const {
     const auto& re = reactions[r];
     const std::string f = "reactions[" + std::to_string(r) + "]";
     model::ReactionNumbers numbers;
-    numbers.rate = re.rate;
-    numbers.has_law = re.law.has_value();
-    numbers.areas = &re.boundary_area;
+    numbers.rate = re.def.rate;
+    numbers.has_law = re.def.law.has_value();
+    numbers.areas = &re.def.boundary_areas;
     numbers.sites = re.particles.size();
     auto check_side = [&](const std::vector<std::pair<int, int>>& side, const std::string& nm,
                           std::vector<long>& counts) {
       for (const auto& [s, nu] : side) {
         if (s < 0 || s >= ns) {
           p.add(f + "." + nm + " species", s, "must index species [0, " + std::to_string(ns) + ")");
-        } else if (!species[s].deterministic) {
+        } else if (!species[s].deterministic()) {
           p.add_text(f + "." + nm,
-                     "species '" + species[s].name +
+                     "species '" + species[s].def.name +
                          "' is stochastic; fluid reactions use deterministic species only");
         }
         counts.push_back(nu);
@@ -104,13 +124,13 @@ void FluidModel::validate() const {
     problems.set_prefix(f);
     model::check(numbers, problems);
     for (const auto& q : problems.list()) p.add(q.field, q.value, q.allowed);
-    if (re.law) {
+    if (re.def.law) {
       std::vector<std::string> names;
-      for (const auto& sp : species) names.push_back(sp.name);
+      for (const auto& sp : species) names.push_back(sp.def.name);
       try {
         // A law may read stochastic species (hybrid reactions: their concentrations
         // X / V come with each advance, the back-transfer) and the time t.
-        (void)rate_law::RateLaw(*re.law, names);
+        (void)rate_law::RateLaw(*re.def.law, names);
       } catch (const InvalidArgument& e) {
         p.add_text(f + ".law", e.what());
       }
@@ -207,7 +227,7 @@ std::vector<std::int32_t> FluidModel::assign_wall_regions(const ParticleState& s
 
 int FluidModel::species_index(const std::string& name) const {
   for (std::size_t s = 0; s < species.size(); ++s) {
-    if (species[s].name == name) return static_cast<int>(s);
+    if (species[s].def.name == name) return static_cast<int>(s);
   }
   return -1;
 }

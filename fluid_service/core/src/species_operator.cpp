@@ -100,7 +100,7 @@ std::uint32_t SpeciesOperator::advance(std::string_view backend, const ParticleS
   // Species held here (stochastic ones a hybrid law reads, X / V from the back-transfer)
   // are constant over the advance: the predictor stage reads them too.
   for (std::size_t s = 0; s < c.size(); ++s) {
-    if (!model_.species[s].deterministic) ctmp_[s] = c[s];
+    if (!model_.species[s].deterministic()) ctmp_[s] = c[s];
   }
   std::uint32_t sub = 0;
   double remaining = time_step;
@@ -120,7 +120,7 @@ std::uint32_t SpeciesOperator::advance(std::string_view backend, const ParticleS
         c[s][i] += 0.5 * dt * (dc0_[s][i] + dc1_[s][i]);
         if (!std::isfinite(c[s][i])) {
           throw_numerical_failure({backend, step_index, sub, state.ids[i],
-                                   "concentration[" + model_.species[s].name + "]", c[s][i],
+                                   "concentration[" + model_.species[s].def.name + "]", c[s][i],
                                    "non-finite"});
         }
       }

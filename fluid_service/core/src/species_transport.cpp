@@ -29,16 +29,17 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
   dirichlet_.assign(ns, std::vector<double>(nr + 1, 0.0));
   for (int s = 0; s < ns; ++s) {
     const auto& sp = model.species[s];
-    if (sp.deterministic) transported_.push_back(s);
-    two_kappa_[s] = 2.0 * sp.diffusivity;
-    if (sp.deterministic) max_kappa_ = std::max(max_kappa_, sp.diffusivity);
+    const double kappa = sp.def.diffusivity;
+    if (sp.deterministic()) transported_.push_back(s);
+    two_kappa_[s] = 2.0 * kappa;
+    if (sp.deterministic()) max_kappa_ = std::max(max_kappa_, kappa);
     auto cond = [&](int reg) -> const WallCondition& {
       return (reg < 0 || sp.wall_conditions.empty()) ? sp.default_wall : sp.wall_conditions[reg];
     };
     for (int reg = -1; reg < nr; ++reg) {
       const auto& wc = cond(reg);
       dirichlet_[s][reg + 1] = wc.value;
-      neumann_grad_[s][reg + 1] = sp.diffusivity > 0 ? wc.value / sp.diffusivity : 0.0;
+      neumann_grad_[s][reg + 1] = kappa > 0 ? wc.value / kappa : 0.0;
     }
     roles_[s].assign(n, Role::kFree);
     for (std::size_t i = 0; i < n; ++i) {
@@ -55,7 +56,7 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
           break;
         case WallCondition::Type::kFree:
           roles_[s][i] = Role::kFree;
-          if (sp.deterministic) active_wall_[i] = 1;
+          if (sp.deterministic()) active_wall_[i] = 1;
           break;
       }
     }
@@ -63,22 +64,23 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
   reactions_.clear();
   std::vector<rate_law::RateLaw> laws;
   std::vector<std::string> names;
-  for (const auto& sp : model.species) names.push_back(sp.name);
+  for (const auto& sp : model.species) names.push_back(sp.def.name);
   std::size_t widest = 0;
   for (std::size_t r = 0; r < model.reactions.size(); ++r) {
     const auto& re = model.reactions[r];
+    const model::Reaction& def = re.def;
     CompiledReaction cr;
-    cr.rate = re.rate;
-    if (re.law) {
+    cr.rate = def.rate;
+    if (def.law) {
       cr.law = static_cast<int>(laws.size());
-      laws.emplace_back(*re.law, names);
+      laws.emplace_back(*def.law, names);
       widest = std::max(widest, laws.back().species().size());
     }
     // Sites: kinds (default fluid only) intersected with the optional particle list.
     cr.kind_ok = {1, 0, 0, 0};
-    if (!re.kinds.empty()) {
+    if (!def.kinds.empty()) {
       cr.kind_ok[0] = 0;
-      for (const ParticleKind k : re.kinds) {
+      for (const ParticleKind k : def.kinds) {
         const auto ki = static_cast<std::size_t>(k);
         if (ki < 4) cr.kind_ok[ki] = 1;
       }
@@ -103,11 +105,11 @@ void SpeciesTransport::setup(const FluidModel& model, const ParticleState& state
         site(i);
       }
     }
-    if (!re.boundary_area.empty()) {  // a boundary flux: j A_i / V_i (sizes: validate())
+    if (!def.boundary_areas.empty()) {  // a boundary flux: j A_i / V_i (sizes: validate())
       cr.scale.assign(n, 0.0);
       for (std::size_t k = 0; k < re.particles.size(); ++k) {
         const std::uint32_t i = re.particles[k];
-        cr.scale[i] = re.boundary_area[k] / state.volume(i);
+        cr.scale[i] = def.boundary_areas[k] / state.volume(i);
       }
     }
     for (std::size_t i = 0; i < n; ++i) {

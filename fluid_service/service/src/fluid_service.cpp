@@ -57,7 +57,7 @@ int FluidServiceHandler::species(const std::string& name, const std::string& whe
   const int s = model_.species_index(name);
   if (s < 0) {
     std::string known;
-    for (const auto& sp : model_.species) known += (known.empty() ? "" : ", ") + sp.name;
+    for (const auto& sp : model_.species) known += (known.empty() ? "" : ", ") + sp.def.name;
     throw InvalidArgument(where + ": unknown species '" + name +
                           "' (known: " + (known.empty() ? "none" : known) + ")");
   }
@@ -292,9 +292,9 @@ void FluidServiceHandler::check_restored_state() {
     const auto& c = b.concentrations(static_cast<int>(k));
     for (std::size_t i = 0; i < c.size(); ++i) {
       if (!std::isfinite(c[i])) {
-        throw InvalidArgument("restore: the blob's concentration of '" + model_.species[k].name +
-                              "' at particle " + std::to_string(i) + " = " + format_value(c[i]) +
-                              " (must be finite)");
+        throw InvalidArgument("restore: the blob's concentration of '" +
+                              model_.species[k].def.name + "' at particle " + std::to_string(i) +
+                              " = " + format_value(c[i]) + " (must be finite)");
       }
     }
   }

@@ -40,7 +40,7 @@ std::vector<std::pair<int, int>> stoichiometry(const std::vector<model::Stoichio
   for (std::size_t k = 0; k < side.size(); ++k) {
     const int s = m.species_index(side[k].species);
     const std::string here = where + "[" + std::to_string(k) + "]";
-    if (s < 0 || !m.species[static_cast<std::size_t>(s)].deterministic) {
+    if (s < 0 || !m.species[static_cast<std::size_t>(s)].deterministic()) {
       throw InvalidArgument(here + ".species = '" + side[k].species +
                             "' is not a deterministic species of this scene");
     }
@@ -111,10 +111,7 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     const model::Species sp = wire::from_proto(in.species(s), at);
     problems.set_prefix(at);
     model::check(sp, problems);
-    SpeciesSpec spec;
-    spec.name = sp.name;
-    spec.diffusivity = sp.diffusivity;
-    spec.deterministic = !sp.stochastic;
+    SpeciesSpec spec(sp);
     for (std::size_t w = 0; w < sp.boundaries.size(); ++w) {
       const model::SpeciesBoundary& wall = sp.boundaries[w];
       if (wall.region.empty()) {
@@ -145,7 +142,7 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     problems.set_prefix(here);
     model::check(rx, problems);
     ReactionSpec spec;
-    spec.kinds = rx.kinds;
+    spec.def = rx;
     for (const auto& name : rx.regions) {
       const auto& v = wire::region_particles(regions, name, here + ".regions");
       spec.particles.insert(spec.particles.end(), v.begin(), v.end());
@@ -153,15 +150,9 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     std::sort(spec.particles.begin(), spec.particles.end());  // regions may overlap
     spec.particles.erase(std::unique(spec.particles.begin(), spec.particles.end()),
                          spec.particles.end());
-    spec.name = rx.name;
     spec.reactants = stoichiometry(rx.reactants, m, here + ".reactants");
     spec.products = stoichiometry(rx.products, m, here + ".products");
-    spec.rate = rx.rate;
-    spec.law = rx.law;
-    if (!rx.boundary_particles.empty()) {
-      spec.particles = rx.boundary_particles;
-      spec.boundary_area = rx.boundary_areas;
-    }
+    if (!rx.boundary_particles.empty()) spec.particles = rx.boundary_particles;
     m.reactions.push_back(std::move(spec));
   }
   problems.throw_if_any();

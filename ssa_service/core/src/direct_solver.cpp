@@ -22,7 +22,8 @@ double DirectSolver::total_propensity() const {
   }
   for (std::uint32_t i = 0; i < n; ++i) {
     for (int s : state_.diffusing_species()) {
-      const double kx = state_.model().species[s].diffusivity * static_cast<double>(x[s * n + i]);
+      const double kx =
+          state_.model().species[s].def.diffusivity * static_cast<double>(x[s * n + i]);
       const std::uint32_t end = state_.edge_end(s, i);
       const bool filter = state_.has_free_walls(s);
       for (std::uint32_t k = g.row_start[i]; k < end; ++k) {
@@ -55,7 +56,8 @@ void DirectSolver::fire(double u) {
   }
   for (std::uint32_t i = 0; i < n; ++i) {
     for (int s : state_.diffusing_species()) {
-      const double kx = state_.model().species[s].diffusivity * static_cast<double>(x[s * n + i]);
+      const double kx =
+          state_.model().species[s].def.diffusivity * static_cast<double>(x[s * n + i]);
       if (kx == 0) continue;
       const std::uint32_t end = state_.edge_end(s, i);
       const bool filter = state_.has_free_walls(s);

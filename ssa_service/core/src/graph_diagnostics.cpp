@@ -60,7 +60,8 @@ GraphDiagnostics diagnose_graph(const DiffusionGraph& graph, const Model& model)
   for (std::size_t c : component) ++sizes[c];
   d.largest_component = *std::max_element(sizes.begin(), sizes.end());
   // Rates kappa_s D_ij: the extremes are products of the extreme kappa and D.
-  for (const auto& s : model.species) {
+  for (const Species& entry : model.species) {
+    const model::Species& s = entry.def;
     if (s.diffusivity <= 0 || d.edges == 0) continue;
     if (d.min_rate_species.empty() || s.diffusivity * d.min_weight < d.min_rate) {
       d.min_rate = s.diffusivity * d.min_weight;

@@ -7,10 +7,25 @@
 #include <cstring>
 #include <set>
 #include <string>
+#include <utility>
 
 #include "sadr/common/status.hpp"
 
 namespace sadr::ssa {
+
+Species::Species(std::string name, double diffusivity) {
+  def.name = std::move(name);
+  def.diffusivity = diffusivity;
+}
+
+Reaction::Reaction(std::string name, std::vector<std::pair<int, int>> reactants,
+                   std::vector<std::pair<int, int>> products, double rate,
+                   std::vector<ParticleKind> kinds, std::vector<std::uint32_t> voxels)
+    : reactants(std::move(reactants)), products(std::move(products)), voxels(std::move(voxels)) {
+  def.name = std::move(name);
+  def.rate = rate;
+  def.kinds = std::move(kinds);
+}
 
 namespace {
 
@@ -38,19 +53,19 @@ void Model::validate() const {
   }
   for (std::size_t s = 0; s < ns; ++s) {
     const std::string f = "species[" + std::to_string(s) + "]";
-    if (species[s].name.empty()) issues.push_back(f + ".name is empty");
-    if (!names.insert(species[s].name).second) {
-      issues.push_back(f + ".name = '" + species[s].name + "' is a duplicate");
+    if (species[s].def.name.empty()) issues.push_back(f + ".name is empty");
+    if (!names.insert(species[s].def.name).second) {
+      issues.push_back(f + ".name = '" + species[s].def.name + "' is a duplicate");
     }
-    checks.finite_nonneg(f + ".diffusivity", species[s].diffusivity);
+    checks.finite_nonneg(f + ".diffusivity", species[s].def.diffusivity);
   }
   for (std::size_t r = 0; r < reactions.size(); ++r) {
     const Reaction& rx = reactions[r];
-    const std::string f = "reactions[" + std::to_string(r) + "] '" + rx.name + "'";
+    const std::string f = "reactions[" + std::to_string(r) + "] '" + rx.def.name + "'";
     model::ReactionNumbers numbers;
-    numbers.rate = rx.rate;
-    numbers.has_law = rx.law.has_value();
-    numbers.areas = &rx.areas;
+    numbers.rate = rx.def.rate;
+    numbers.has_law = rx.def.law.has_value();
+    numbers.areas = &rx.def.boundary_areas;
     numbers.sites = rx.voxels.size();
     for (std::size_t k = 0; k < rx.reactants.size(); ++k) {
       const std::string fk = f + ".reactants[" + std::to_string(k) + "]";
@@ -72,9 +87,9 @@ void Model::validate() const {
     problems.set_prefix(f);
     model::check(numbers, problems);
     for (const auto& p : problems.list()) issues.push_back(p.message());
-    if (rx.law) {
+    if (rx.def.law) {
       try {
-        (void)rate_law::RateLaw(*rx.law, law_names());
+        (void)rate_law::RateLaw(*rx.def.law, law_names());
       } catch (const InvalidArgument& e) {
         issues.push_back(f + ".law: " + e.what());
       }
@@ -182,17 +197,17 @@ void Model::validate() const {
 
 int Model::species_index(std::string_view name) const {
   for (std::size_t s = 0; s < species.size(); ++s) {
-    if (species[s].name == name) return static_cast<int>(s);
+    if (species[s].def.name == name) return static_cast<int>(s);
   }
   std::string known;
-  for (std::size_t s = 0; s < species.size(); ++s) known += (s ? ", " : "") + species[s].name;
+  for (std::size_t s = 0; s < species.size(); ++s) known += (s ? ", " : "") + species[s].def.name;
   throw InvalidArgument("unknown species name '" + std::string(name) + "' (known: " + known + ")",
                         {{"field", "species"}, {"value", std::string(name)}});
 }
 
 std::vector<std::string> Model::species_names() const {
   std::vector<std::string> out;
-  for (const auto& s : species) out.push_back(s.name);
+  for (const auto& s : species) out.push_back(s.def.name);
   return out;
 }
 
@@ -224,27 +239,28 @@ std::uint64_t Model::fingerprint() const {
   Fnv f;
   f.pod(species.size());
   for (const auto& s : species) {
-    f.str(s.name);
-    f.pod(s.diffusivity);
+    f.str(s.def.name);
+    f.pod(s.def.diffusivity);
   }
   f.pod(reactions.size());
   for (const auto& r : reactions) {
-    f.str(r.name);
+    f.str(r.def.name);
     for (const auto& [s, n] : r.reactants) f.pod(s), f.pod(n);
     f.pod(-1);
     for (const auto& [s, n] : r.products) f.pod(s), f.pod(n);
     f.pod(-1);
-    f.pod(r.rate);
-    if (r.law) {  // absent without a law: old fingerprints stay valid
-      f.str(r.law->text());
-      for (const auto& [name, value] : r.law->parameters) f.str(name), f.pod(value);
+    f.pod(r.def.rate);
+    if (r.def.law) {  // absent without a law: old fingerprints stay valid
+      f.str(r.def.law->text());
+      for (const auto& [name, value] : r.def.law->parameters) f.str(name), f.pod(value);
     }
-    for (auto k : r.kinds) f.pod(k);
+    for (auto k : r.def.kinds) f.pod(k);
     f.pod(-1);
     for (auto v : r.voxels) f.pod(v);
-    if (!r.areas.empty()) {  // absent without a boundary flux: old fingerprints stay valid
+    // absent without a boundary flux: old fingerprints stay valid
+    if (!r.def.boundary_areas.empty()) {
       f.pod(-3);
-      for (auto a : r.areas) f.pod(a);
+      for (auto a : r.def.boundary_areas) f.pod(a);
     }
     f.pod(-1);
   }

@@ -17,7 +17,7 @@ RdmeState::RdmeState(Model model) : model_(std::move(model)) {
   kappa_.resize(ns);
   reservoir_.assign(ns, 0);
   for (std::size_t s = 0; s < ns; ++s) {
-    kappa_[s] = model_.species[s].diffusivity;
+    kappa_[s] = model_.species[s].def.diffusivity;
     if (kappa_[s] > 0) diffusing_.push_back(static_cast<int>(s));
   }
   for (const WallReservoir& w : model_.reservoirs) reservoir_[w.species] = 1;
@@ -293,7 +293,7 @@ void RdmeState::set_counts(int species, std::span<const std::int64_t> counts) {
     if (counts[i] < 0) {
       throw InvalidArgument("set_counts: counts[" + std::to_string(i) +
                             "] = " + std::to_string(counts[i]) + " for species '" +
-                            model_.species[species].name + "' (allowed: >= 0)");
+                            model_.species[species].def.name + "' (allowed: >= 0)");
     }
   }
   std::copy(counts.begin(), counts.end(), counts_.begin() + species * n_);

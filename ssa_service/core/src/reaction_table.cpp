@@ -15,9 +15,10 @@ namespace {
 
 CompiledReaction compile(const Reaction& rx) {
   CompiledReaction c;
+  const bool has_law = rx.def.law.has_value();
   std::map<int, int> net;
   for (const auto& [s, nu] : rx.reactants) {
-    if (!rx.law) {  // the mass-action form (at most 2 reactants, Model::validate)
+    if (!has_law) {  // the mass-action form (at most 2 reactants, Model::validate)
       c.species[c.n_reactants] = s;
       c.nu[c.n_reactants] = nu;
       ++c.n_reactants;
@@ -42,17 +43,18 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
   std::size_t widest = 0;
   for (const Reaction& rx : model.reactions) {
     t.reactions_.push_back(compile(rx));
-    t.names_.push_back(rx.name);
-    if (rx.law) {
+    t.names_.push_back(rx.def.name);
+    const std::vector<double>& areas = rx.def.boundary_areas;
+    if (rx.def.law) {
       t.reactions_.back().law = static_cast<int>(t.laws_.size());
-      rate_law::RateLaw law(*rx.law, t.species_);
+      rate_law::RateLaw law(*rx.def.law, t.species_);
       const auto& sp = law.species();
       const bool external =
           law.uses_time() || std::any_of(sp.begin(), sp.end(), [&](int s) { return s >= t.ns_; });
       t.has_external_ = t.has_external_ || external;
       t.laws_.push_back(
-          {std::move(law), rx.reactants, t.reactions_.size() - 1, external, !rx.areas.empty()});
-      if (!rx.areas.empty()) t.volume_ = graph.volume;
+          {std::move(law), rx.reactants, t.reactions_.size() - 1, external, !areas.empty()});
+      if (!areas.empty()) t.volume_ = graph.volume;
       widest = std::max(widest, t.laws_.back().law.species().size());
     }
   }
@@ -68,24 +70,25 @@ ReactionTable ReactionTable::build(const Model& model, const DiffusionGraph& gra
   std::vector<std::uint8_t> in_region(n);
   for (std::size_t r = 0; r < model.reactions.size(); ++r) {
     const Reaction& rx = model.reactions[r];
-    if (!rx.law && rx.rate == 0) continue;
+    const model::Reaction& def = rx.def;
+    if (!def.law && def.rate == 0) continue;
     std::fill(in_region.begin(), in_region.end(), rx.voxels.empty() ? 1 : 0);
     for (std::uint32_t v : rx.voxels) in_region[v] = 1;
-    if (!rx.areas.empty()) {  // a boundary flux: c = A_i in its fluid voxels (a = A_i j)
+    if (!def.boundary_areas.empty()) {  // a boundary flux: c = A_i in its fluid voxels (a = A_i j)
       for (std::size_t k = 0; k < rx.voxels.size(); ++k) {
         const std::uint32_t i = rx.voxels[k];
-        if (graph.kind[i] == ParticleKind::kFluid) t.c_[i * nr + r] = rx.areas[k];
+        if (graph.kind[i] == ParticleKind::kFluid) t.c_[i * nr + r] = def.boundary_areas[k];
       }
       continue;
     }
     for (std::size_t i = 0; i < n; ++i) {
-      const bool kind_ok = rx.kinds.empty() ? graph.kind[i] == ParticleKind::kFluid
-                                            : std::find(rx.kinds.begin(), rx.kinds.end(),
-                                                        graph.kind[i]) != rx.kinds.end();
+      const bool kind_ok = def.kinds.empty() ? graph.kind[i] == ParticleKind::kFluid
+                                             : std::find(def.kinds.begin(), def.kinds.end(),
+                                                         graph.kind[i]) != def.kinds.end();
       if (!kind_ok || !in_region[i]) continue;
       t.c_[i * nr + r] =
-          rx.law ? graph.volume[i]
-                 : mass_action::voxel_constant(rx.rate, t.reactions_[r].order, graph.volume[i]);
+          def.law ? graph.volume[i]
+                  : mass_action::voxel_constant(def.rate, t.reactions_[r].order, graph.volume[i]);
     }
   }
   // Neumann: the first layer of non-wall particles, i.e. those with a wall

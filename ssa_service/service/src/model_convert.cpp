@@ -60,26 +60,22 @@ void compile_walls(const model::Species& sp, int idx, const wire::RegionMap& reg
   }
 }
 
-/// One reaction by name as the core's indexed reaction: species to indices, regions to voxels.
+/// One reaction by name as the core's indexed reaction: the model's reaction itself (unnamed:
+/// "reaction <r>") with its species resolved to indices and its regions to voxels.
 Reaction compile_reaction(const model::Reaction& rx, std::size_t r, const SpeciesIndex& index,
                           const wire::RegionMap& regions, const std::string& here) {
   Reaction out;
-  out.name = rx.name.empty() ? "reaction " + std::to_string(r) : rx.name;
+  out.def = rx;
+  if (out.def.name.empty()) out.def.name = "reaction " + std::to_string(r);
   out.reactants = stoichiometry(rx.reactants, index, here + ".reactants");
   out.products = stoichiometry(rx.products, index, here + ".products");
-  out.rate = rx.rate;
-  out.law = rx.law;
-  out.kinds = rx.kinds;
   for (const auto& name : rx.regions) {
     const auto& v = wire::region_particles(regions, name, here + ".regions");
     out.voxels.insert(out.voxels.end(), v.begin(), v.end());
   }
   std::sort(out.voxels.begin(), out.voxels.end());  // regions may overlap
   out.voxels.erase(std::unique(out.voxels.begin(), out.voxels.end()), out.voxels.end());
-  if (!rx.boundary_particles.empty()) {
-    out.voxels = rx.boundary_particles;
-    out.areas = rx.boundary_areas;
-  }
+  if (!rx.boundary_particles.empty()) out.voxels = rx.boundary_particles;
   return out;
 }
 
@@ -108,7 +104,7 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
     const int idx = static_cast<int>(m.species.size());
     index.emplace(sp.name, idx);
     species_names.push_back(sp.name);
-    m.species.push_back(Species{sp.name, sp.diffusivity});
+    m.species.push_back(Species{sp});
     compile_walls(sp, idx, regions, here, m);
   }
   for (int r = 0; r < in.reactions_size(); ++r) {

@@ -18,6 +18,7 @@
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/rate_law.hpp"
 #include "sadr/common/wall_surface.hpp"
+#include "sadr/model/chemistry.hpp"
 
 namespace sadr::fluid {
 
@@ -83,41 +84,57 @@ enum class WallModel {
   }
 }
 
-/// One chemical species carried by the particles.
+/// One chemical species carried by the particles: the model's (sadr/model/chemistry.hpp),
+/// indexed by its position in FluidModel::species, and its wall conditions by region index.
+/// Read `def.name` and `def.diffusivity` (kappa [length^2/time], >= 0). `def.stochastic` false
+/// (deterministic(), the default here): the fluid backend integrates it (eq (17) with reactions,
+/// docs/method.md section 2); true: a stochastic species owned by the SSA, the backend only
+/// stores the values set by set_concentrations() (used e.g. for a Boussinesq feedback).
+/// `def.boundaries` (by region name) are not read: default_wall and wall_conditions are what
+/// they compile to.
 struct SpeciesSpec {
-  std::string name;
-  double diffusivity = 0.0;  ///< kappa [length^2/time] (>= 0)
-  /// true: the fluid backend integrates it (eq (17) with reactions, docs/method.md section 2);
-  /// false: stochastic species owned by the SSA; the backend only stores the values set by
-  /// set_concentrations() (used e.g. for a Boussinesq feedback).
-  bool deterministic = true;
+  model::Species def;
   /// Condition on wall particles outside every WallRegion.
   WallCondition default_wall{};
   /// One condition per FluidModel::wall_regions entry, or empty (default_wall everywhere).
   std::vector<WallCondition> wall_conditions;
+
+  SpeciesSpec() { def.stochastic = false; }
+  explicit SpeciesSpec(model::Species species) : def(std::move(species)) {}
+  /// By name and numbers (a FluidModel built without the model layer: tests, benches).
+  SpeciesSpec(std::string name, double diffusivity, bool deterministic = true,
+              WallCondition default_wall = {}, std::vector<WallCondition> wall_conditions = {});
+  [[nodiscard]] bool deterministic() const { return !def.stochastic; }
 };
 
-/// Reaction among deterministic species, in concentration units: mass action
-/// (`rate`) or another rate law (`law`, common/rate_law.hpp, v = law(C)).
+/// Reaction among deterministic species, in concentration units: the model's
+/// (sadr/model/chemistry.hpp) with its species and regions as indices. Mass action
+/// (`def.rate` [C^(1 - order) / time]) or another rate law (`def.law`, common/rate_law.hpp,
+/// v = law(C), species by FluidModel::species names; `def.rate` is then unused).
 /// Rate of reaction: v = rate * prod_s C_s^nu_s / nu_s!  (the 1/nu! matches the RDME
 /// combinatorics, so A + A -> 0 with `rate` k gives dC_A/dt = -k C_A^2, docs/method.md section 4).
-/// dC_s/dt += (products_s - reactants_s) * v.
+/// dC_s/dt += (products_s - reactants_s) * v. `def.kinds`: the kinds where it fires (empty =
+/// fluid particles only). `def.boundary_areas`: non-empty for a boundary flux (scene
+/// `boundary_fluxes`), parallel to `particles` (then required): A_i [length^(d-1)] > 0, particle
+/// i's share of the boundary area; the law is a flux density j [C length/time] into the fluid
+/// and dC_s/dt += delta_s j A_i / V_i with V_i = m_i / rho_i at initialize() (docs/method.md
+/// 4d). `def.reactants`, `def.products` (by name) and `def.regions` are not read: the indices
+/// below are what they compile to.
 struct ReactionSpec {
-  std::string name;
+  model::Reaction def;
   std::vector<std::pair<int, int>> reactants;  ///< (species index, stoichiometry >= 1)
   std::vector<std::pair<int, int>> products;   ///< (species index, stoichiometry >= 1)
-  double rate = 0.0;                           ///< [C^(1 - order) / time]
-  std::vector<ParticleKind> kinds;       ///< kinds where it fires; empty = fluid particles only
-  std::vector<std::uint32_t> particles;  ///< optional restriction to these particle indices
-                                         ///< (into the initial state); empty = all. Checked
-                                         ///< against N at initialize().
-  /// A law other than mass action (species by FluidModel::species names); `rate` unused.
-  std::optional<rate_law::Definition> law{};
-  /// Non-empty: a boundary flux (scene `boundary_fluxes`). Parallel to `particles` (then
-  /// required): A_i [length^(d-1)] > 0, particle i's share of the boundary area. The law is a
-  /// flux density j [C length/time] into the fluid and dC_s/dt += delta_s j A_i / V_i with
-  /// V_i = m_i / rho_i at initialize() (docs/method.md 4d).
-  std::vector<double> boundary_area{};
+  /// Optional restriction to these particle indices (into the initial state; def.regions'
+  /// particles, sorted and unique, or def.boundary_particles for a boundary flux); empty = all.
+  /// Checked against N at initialize().
+  std::vector<std::uint32_t> particles;
+
+  ReactionSpec() = default;
+  /// A mass-action reaction by indices (a FluidModel built without the model layer: tests,
+  /// benches).
+  ReactionSpec(std::string name, std::vector<std::pair<int, int>> reactants,
+               std::vector<std::pair<int, int>> products, double rate,
+               std::vector<ParticleKind> kinds = {}, std::vector<std::uint32_t> particles = {});
 };
 
 /// Boussinesq body acceleration a = coefficient * (C_species - reference) * direction.

@@ -71,11 +71,11 @@ class SpeciesTransport {
     }
   }
   /// True for a wall particle that takes part in species transport: kFree for some transported
-  /// species or a site of some reaction (ReactionSpec::kinds contains kWall). Backends gather
+  /// species or a site of some reaction (ReactionSpec::def.kinds contains kWall). Backends gather
   /// species terms for such walls with add_pair_wall() and call add_reactions() for them.
   [[nodiscard]] bool active_wall(std::size_t i) const { return active_wall_[i] != 0; }
   /// Adds the reaction rates (mass action or rate law) at particle i to dc (only reactions that
-  /// fire at i: ReactionSpec::kinds and ::particles; held Dirichlet values are never changed).
+  /// fire at i: ReactionSpec::def.kinds and ::particles; held Dirichlet values are never changed).
   void add_reactions(std::size_t i, const std::vector<std::vector<double>>& c,
                      std::vector<std::vector<double>>& dc) const;
   /// max_i sum_r sum_{s in reactants} nu_s |dv_r/dC_s| [1/time]: the largest reaction
@@ -84,7 +84,7 @@ class SpeciesTransport {
                                            const ParticleState& state) const;
   [[nodiscard]] double max_diffusivity() const { return max_kappa_; }
   [[nodiscard]] bool has_reactions() const { return !reactions_.empty(); }
-  /// Re-derives the reaction sites from the particles' current kinds (ReactionSpec::kinds,
+  /// Re-derives the reaction sites from the particles' current kinds (ReactionSpec::def.kinds,
   /// still intersected with ReactionSpec::particles): for backends whose particles change
   /// kind (fluid <-> inlet <-> outlet at an open boundary). Wall particles never change kind,
   /// so wall roles and active_wall() stay as set up.

@@ -32,31 +32,46 @@ namespace sadr::ssa {
 using model::JumpConvention;
 using model::to_string;
 
-/// One chemical species.
+/// One chemical species: the model's (sadr/model/chemistry.hpp), indexed by its position in
+/// Model::species. Read `def.name`, `def.diffusivity` (kappa [L^2/T]; 0 = immobile, no
+/// diffusion bookkeeping); its `def.boundaries` are compiled into Model::reservoirs, ::neumann
+/// and ::free_walls.
 struct Species {
-  std::string name;
-  double diffusivity = 0;  ///< kappa [L^2/T]; 0 = immobile (no diffusion bookkeeping)
+  model::Species def;
+
+  Species() = default;
+  explicit Species(model::Species species) : def(std::move(species)) {}
+  /// By name and diffusivity (a Model built without the model layer: tests, benches).
+  Species(std::string name, double diffusivity);
 };
 
-/// A reaction: mass action of total order 0, 1 or 2 (`rate`), or any other
-/// rate law (`law`, common/rate_law.hpp; then any stoichiometry).
+/// A reaction: the model's (sadr/model/chemistry.hpp) and what the SSA derives from it, its
+/// species and regions as indices. Mass action of total order 0, 1 or 2 (`def.rate`), or any
+/// other rate law (`def.law`, common/rate_law.hpp; then any stoichiometry).
+///
+/// From `def` the core reads: `name`; `rate`, the rate constant in concentration units:
+/// order 0 [conc/T], order 1 [1/T], order 2 [1/(conc T)], conc = molecules/L^d (for A + A the
+/// convention is dC_A/dt = -k C_A^2, common/mass_action.hpp); `kinds`, the particle kinds where
+/// it may fire (empty = fluid only); `law`, a law other than mass action (species by the names
+/// of Model::law_names(); `rate` is then unused; propensity a_i = V_i v(X_i / V_i));
+/// `boundary_areas`: non-empty for a boundary flux (scene `boundary_fluxes`), parallel to
+/// `voxels` (then required): A_i [L^(d-1)] > 0, voxel i's share of the boundary area; the law
+/// (required) is then a flux density j [molecules/(L^(d-1) T)] and a_i = A_i j(X_i / V_i).
+/// `def.reactants`, `def.products` (by name) and `def.regions` are not read: the indices below
+/// are what they compile to.
 struct Reaction {
-  std::string name;
+  model::Reaction def;
   std::vector<std::pair<int, int>> reactants;  ///< (species index, stoichiometry >= 1)
   std::vector<std::pair<int, int>> products;   ///< (species index, stoichiometry >= 1)
-  /// Rate constant in concentration units: order 0 [conc/T], order 1 [1/T],
-  /// order 2 [1/(conc T)], conc = molecules/L^d. For A + A the convention is
-  /// dC_A/dt = -k C_A^2 (see common/mass_action.hpp).
-  double rate = 0;
-  std::vector<ParticleKind> kinds;    ///< particle kinds where it may fire; empty = fluid only
-  std::vector<std::uint32_t> voxels;  ///< optional restriction to particle indices; empty = all
-  /// A law other than mass action (species by the names of Model::species;
-  /// `rate` is then unused). Propensity a_i = V_i v(X_i / V_i).
-  std::optional<rate_law::Definition> law{};
-  /// Non-empty: a boundary flux (scene `boundary_fluxes`), parallel to `voxels` (then required):
-  /// A_i [L^(d-1)] > 0, voxel i's share of the boundary area. The law (required) is then a flux
-  /// density j [molecules/(L^(d-1) T)] and the propensity is a_i = A_i j(X_i / V_i).
-  std::vector<double> areas{};
+  /// Optional restriction to particle indices (def.regions' particles, sorted and unique, or
+  /// def.boundary_particles for a boundary flux); empty = all.
+  std::vector<std::uint32_t> voxels;
+
+  Reaction() = default;
+  /// A mass-action reaction by indices (a Model built without the model layer: tests, benches).
+  Reaction(std::string name, std::vector<std::pair<int, int>> reactants,
+           std::vector<std::pair<int, int>> products, double rate,
+           std::vector<ParticleKind> kinds = {}, std::vector<std::uint32_t> voxels = {});
 };
 
 /// Dirichlet reservoir: wall particles hold round(C V_i) molecules of
