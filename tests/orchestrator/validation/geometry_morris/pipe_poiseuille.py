@@ -29,7 +29,7 @@ import time
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
+ROOT = os.path.abspath(os.path.join(HERE, "..", "..", "..", ".."))
 MESHES = os.path.join(ROOT, "examples", "data", "meshes")
 R, RHO, ETA, G, C0 = 0.5, 1.0, 0.1, 1.6, 10.0
 NU = ETA / RHO
