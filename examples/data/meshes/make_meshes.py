@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: MIT
 """Writes the mesh files of examples/pipe_stl_3d.yaml, examples/channel_obstacle_gmsh_2d.yaml and
-the geometry Morris-wall validations (tests/validation/geometry_morris/):
+the geometry Morris-wall validations (tests/orchestrator/validation/geometry_morris/):
 
   pipe.stl                ASCII STL: a closed circular cylinder (the pipe's fluid body) of
                           radius R = 0.5 along z from z = -0.5 to z = 1.0, 192 sides, written
