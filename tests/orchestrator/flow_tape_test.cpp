@@ -67,7 +67,8 @@ FlowRecord frame_record() {
 /// Bit for bit (so -0.0 and 0.0 differ).
 template <class T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 bool same(const FlowRecord& a, const FlowRecord& b) {

@@ -57,7 +57,7 @@ struct In {
     const auto n = get<std::uint64_t>();
     if (n > (bytes.size() - at) / sizeof(T)) throw InvalidArgument("array longer than payload");
     v.resize(n);
-    std::memcpy(v.data(), bytes.data() + at, n * sizeof(T));
+    if (n != 0) std::memcpy(v.data(), bytes.data() + at, n * sizeof(T));  // data() may be null
     at += n * sizeof(T);
   }
   std::string get_string() {
