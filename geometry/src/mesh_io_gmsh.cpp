@@ -272,6 +272,7 @@ MeshFile read_mesh(const std::string& path, int dimension) {
     std::string name;
     gmsh::model::getPhysicalName(gdim, gtag, name);
     if (name.empty()) name = std::string(1, '#').append(std::to_string(gtag));
+    out.group_dimensions[name] = gdim;
     if (gdim == dimension - 1) {
       out.surfaces[name] = r.as_surface(r.group_elements(gdim, gtag), "physical " + name);
       validate(out.surfaces[name]);

@@ -81,6 +81,7 @@ MeshFile read_obj(const std::string& path, int dimension) {
     const std::string name(mesh.mName.data, mesh.mName.length);
     if (name.empty() || name == "defaultobject") continue;
     SurfaceMesh& group = out.surfaces[name];
+    out.group_dimensions[name] = 2;
     group.dimension = 3;
     group.source = path + " (group " + name + ")";
     std::size_t ignored = 0;

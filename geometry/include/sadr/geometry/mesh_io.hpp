@@ -33,6 +33,9 @@ class MeshFile {
 
   std::map<std::string, SurfaceMesh> surfaces;  ///< by physical name (unnamed: "#<tag>")
   std::map<std::string, SurfaceMesh> regions;
+  /// Every physical group's dimension by name, those of other dimensions (points, lines in 3D)
+  /// included; OBJ groups are surfaces (2).
+  std::map<std::string, int> group_dimensions;
 };
 
 /// Reads `path` (.msh or .stl, by extension, case-insensitive) as a mesh of `dimension` 2 or 3.
