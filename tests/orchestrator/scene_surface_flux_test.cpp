@@ -193,7 +193,8 @@ TEST(SurfaceFluxScene, WrongSurfacesAreRefusedWithFileAndLine) {
        "scene.yaml:14:5: boundary_fluxes[0]: missing 'face' or 'surface'"},
       {"  - {species: A, surface: cell, region: spot, law: {type: expression, expression: "
        "\"2\"}}\n",
-       "scene.yaml:14:41: boundary_fluxes[0].region: 'region' restricts a box face"},
+       "scene.yaml:14:41: boundary_fluxes[0].region: boundary flux 'flux0': no particle of the "
+       "first fluid layer next to 'cell' lies in region 'spot'"},
       {"  - {species: A, surface: [cell], law: {type: expression, expression: \"2\"}}\n",
        "scene.yaml:14:27: boundary_fluxes[0].surface:"},
   };

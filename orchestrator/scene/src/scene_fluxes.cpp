@@ -19,8 +19,8 @@ namespace sadr::orchestrator::detail {
 
 namespace {
 
-constexpr std::array<std::string_view, 7> kFluxKeys{"name",    "equation", "species", "face",
-                                                    "surface", "region",   "law"};
+constexpr std::array<std::string_view, 8> kFluxKeys{"name",    "equation", "species", "face",
+                                                    "surface", "group",    "region",  "law"};
 constexpr std::array<std::string_view, 6> kFaces{"x-", "x+", "y-", "y+", "z-", "z+"};
 
 void add_flux(SceneContext& ctx, const Field& f, std::set<std::string>& names, Reaction rx) {
@@ -30,79 +30,6 @@ void add_flux(SceneContext& ctx, const Field& f, std::set<std::string>& names, R
                                                        "names must be unique");
   }
   ctx.scene.reactions.push_back(std::move(rx));
-}
-
-/// `surface: <body>`: the first fluid layer next to a fluid or solid body of the geometry
-/// section and the shares of its area. False (an error said) when it cannot be made.
-bool read_surface_share(SceneContext& ctx, const Field& f, const Field& root,
-                        const std::string& name, Reaction& rx) {
-  YamlReader& r = ctx.reader;
-  const Field sf = YamlReader::child(f, "surface");
-  if (YamlReader::present(YamlReader::child(f, "region"))) {
-    r.error(YamlReader::child(f, "region"),
-            "'region' restricts a box face; with 'surface' the flux covers the whole surface "
-            "(allowed: 'region' with 'face' only)");
-    return false;
-  }
-  if (!YamlReader::present(YamlReader::child(root, "geometry"))) {
-    r.error(sf,
-            "'surface' names a fluid or solid body of the 'geometry' section, and the scene "
-            "has none; allowed: 'face' (a box face)");
-    return false;
-  }
-  if (!ctx.geometry_ok || !ctx.particles_ok || !ctx.scene.geometry) return false;
-  const GeometryReport& geo = *ctx.scene.geometry;
-  const GeometryBody* body = nullptr;
-  std::vector<std::string> own;
-  for (const auto& b : geo.bodies) {
-    if (b.name == name) body = &b;
-    if (b.role != "region") own.push_back(b.name);
-  }
-  const std::vector<std::string_view> allowed(own.begin(), own.end());
-  if (!body) {
-    std::string msg = "unknown surface '" + name + "'";
-    if (auto near = nearest_name(name, allowed)) msg += "; did you mean '" + *near + "'?";
-    r.error(sf, msg + " (allowed: the fluid and solid bodies of 'geometry': " +
-                    join_names(allowed) + ")");
-    return false;
-  }
-  if (body->role == "region") {
-    r.error(sf, "'" + name +
-                    "' is a region body, which has no surface (no walls); allowed: a "
-                    "fluid or solid body (" +
-                    join_names(allowed) + ")");
-    return false;
-  }
-  // The shape's own area when it gives one and nothing of it is cut off by the box.
-  std::optional<double> area;
-  if (body->exact_area && body->inside_box) area = body->exact_area;
-  try {
-    BoundaryShare s = surface_share(ctx.scene.particles, geo.surface_id, geo.surface_distance,
-                                    body->surface_id, geo.spacing, area);
-    if (area && !(s.layer_area > 0.5 * *area && s.layer_area < 2.0 * *area)) {
-      r.warning(sf, "the first fluid layer next to '" + name + "' covers about " +
-                        format_number(s.layer_area) + " of its area " + format_number(*area) +
-                        " (part of the surface lies inside another solid or outside the fluid "
-                        "body?); the flux uses the layer's estimate " +
-                        format_number(s.layer_area));
-      s = surface_share(ctx.scene.particles, geo.surface_id, geo.surface_distance, body->surface_id,
-                        geo.spacing, std::nullopt);
-    }
-    if (!area) {
-      r.warning(sf, std::string("the area of '") + name + "' is " +
-                        (body->exact_area ? "cut by the box" : "not known in closed form") +
-                        ": the flux uses its first fluid layer's estimate " +
-                        format_number(s.layer_area) +
-                        ", accurate to about a spacing over the surface's radius of curvature; "
-                        "for an exact area use a primitive or a mesh wholly inside the box");
-    }
-    rx.boundary_particles = std::move(s.particles);
-    rx.boundary_areas = std::move(s.areas);
-  } catch (const InvalidArgument& e) {
-    r.error(sf, "boundary flux '" + rx.name + "' on surface '" + name + "': " + e.what());
-    return false;
-  }
-  return true;
 }
 
 }  // namespace
@@ -181,17 +108,20 @@ BoundaryShare boundary_share(const ParticleState& p, const Box& box, int axis, b
 
 BoundaryShare surface_share(const ParticleState& p, std::span<const int> surface_id,
                             std::span<const double> distance, int surface, double spacing,
-                            std::optional<double> area) {
+                            std::optional<double> area, std::span<const std::uint8_t> part) {
   const int d = p.dimension;
   std::vector<std::uint32_t> cand;
   double dmin = HUGE_VAL;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.kind(i) != ParticleKind::kFluid || surface_id[i] != surface) continue;
-    if (!std::isfinite(distance[i])) continue;
+    if (!std::isfinite(distance[i]) || (!part.empty() && !part[i])) continue;
     cand.push_back(static_cast<std::uint32_t>(i));
     dmin = std::min(dmin, distance[i]);
   }
-  if (cand.empty()) throw InvalidArgument("no fluid particle lies next to the surface");
+  if (cand.empty()) {
+    throw InvalidArgument(std::string("no fluid particle lies next to the surface") +
+                          (part.empty() ? "" : "'s part"));
+  }
   const double limit = dmin + (1.0 - 1e-9) * spacing;
   BoundaryShare s;
   std::vector<double> w;
@@ -261,6 +191,12 @@ void read_boundary_fluxes(SceneContext& ctx, const Field& root) {
       continue;
     }
     const bool on_surface = YamlReader::present(sf);
+    if (!on_surface && YamlReader::present(YamlReader::child(f, "group"))) {
+      r.error(YamlReader::child(f, "group"),
+              "'group' names a part of a body's surface and needs 'surface' (the body); "
+              "allowed: 'group' with 'surface' only");
+      continue;
+    }
     const auto face =
         on_surface ? std::optional<std::string>{} : r.choice(f, "face", kFaces, false, "face");
     const auto surface = on_surface ? r.string(f, "surface", true) : std::nullopt;

@@ -384,6 +384,10 @@ void read_geometry(SceneContext& ctx, const Field& root) {
       info.exact_volume = v;
     }
     report->bodies.push_back(info);
+    if (b.shape.mesh_file && b.role != "region") {
+      ctx.mesh_bodies[b.name] = std::make_shared<const MeshBody>(
+          MeshBody{b.shape.mesh_file, b.shape.mesh_path, b.shape.place, b.shape.shape});
+    }
     std::vector<std::uint32_t> own, walls, fluid;
     for (std::size_t i = 0; i < n; ++i) {
       const auto ui = static_cast<std::uint32_t>(i);

@@ -7,8 +7,10 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -33,6 +35,20 @@ g::Aabb box_aabb(const Box& b);
 struct ShapeRead {
   g::ShapePtr shape;
   bool plain_box = false;  ///< an axis-aligned box, translated at most (bounds exact)
+  /// A mesh file's shape (transformed at most, not inside CSG): the file, its path, and the
+  /// shape's transforms, to place the file's physical groups where the shape is.
+  std::shared_ptr<const g::MeshFile> mesh_file;
+  std::string mesh_path;
+  std::function<g::ShapePtr(g::ShapePtr)> place;
+};
+
+/// A fluid or solid body whose shape is a mesh file (ShapeRead::mesh_file): what a boundary
+/// flux on one of its physical groups needs (scene_flux_surfaces.cpp).
+struct MeshBody {
+  std::shared_ptr<const g::MeshFile> file;
+  std::string path;
+  std::function<g::ShapePtr(g::ShapePtr)> place;  ///< the body's transforms (identity: null)
+  g::ShapePtr shape;                              ///< the body as placed
 };
 
 struct BodyRead {
@@ -63,7 +79,7 @@ class GeometryReader {
   SceneContext& ctx_;
   YamlReader& r_;
   int d_;
-  std::map<std::string, g::MeshFile> meshes_;
+  std::map<std::string, std::shared_ptr<const g::MeshFile>> meshes_;
   std::vector<std::string> notes_;
 };
 

@@ -196,7 +196,7 @@ ShapeRead GeometryReader::mesh(const Field& f) {
   auto it = meshes_.find(key);
   if (it == meshes_.end()) {
     try {
-      it = meshes_.emplace(key, g::read_mesh(key, d_)).first;
+      it = meshes_.emplace(key, std::make_shared<const g::MeshFile>(g::read_mesh(key, d_))).first;
       // A changed mesh is a changed scene (checkpoints refuse it): its hash joins the scene's.
       ctx_.particle_file_bytes += "\nmesh " + file_hash(key);
     } catch (const std::exception& e) {
@@ -206,7 +206,9 @@ ShapeRead GeometryReader::mesh(const Field& f) {
       return out;
     }
   }
-  const g::MeshFile& mf = it->second;
+  const g::MeshFile& mf = *it->second;
+  out.mesh_file = it->second;
+  out.mesh_path = key;
   const g::SurfaceMesh* surface = &mf.boundary;
   const Field group = YamlReader::child(f, "group");
   if (YamlReader::present(group)) {
@@ -270,6 +272,11 @@ ShapeRead GeometryReader::transform(const Field& f, ShapeRead s) {
     if (!ok) return {};
     s.shape = g::scale(s.shape, factors);
     s.plain_box = false;
+    if (s.mesh_file) {
+      s.place = [prev = s.place, factors](g::ShapePtr x) {
+        return g::scale(prev ? prev(std::move(x)) : std::move(x), factors);
+      };
+    }
   }
   const Field rot = YamlReader::child(f, "rotate");
   if (YamlReader::present(rot)) {
@@ -295,13 +302,24 @@ ShapeRead GeometryReader::transform(const Field& f, ShapeRead s) {
       if (!ax) return {};
     }
     if (!angle) return {};
-    s.shape = g::rotate(s.shape, axis, *angle * std::numbers::pi / 180.0);
+    const double radians = *angle * std::numbers::pi / 180.0;
+    s.shape = g::rotate(s.shape, axis, radians);
     s.plain_box = false;
+    if (s.mesh_file) {
+      s.place = [prev = s.place, axis, radians](g::ShapePtr x) {
+        return g::rotate(prev ? prev(std::move(x)) : std::move(x), axis, radians);
+      };
+    }
   }
   if (YamlReader::present(YamlReader::child(f, "translate"))) {
     const auto t = r_.vector(f, "translate", d_, "length", true);
     if (!t) return {};
     s.shape = g::translate(s.shape, to_vec(*t));
+    if (s.mesh_file) {
+      s.place = [prev = s.place, offset = to_vec(*t)](g::ShapePtr x) {
+        return g::translate(prev ? prev(std::move(x)) : std::move(x), offset);
+      };
+    }
   }
   return s;
 }

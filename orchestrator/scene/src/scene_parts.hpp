@@ -4,6 +4,8 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -13,6 +15,8 @@
 #include "yaml_reader.hpp"
 
 namespace sadr::orchestrator::detail {
+
+struct MeshBody;  // scene_geometry_parts.hpp
 
 /// State shared by the section readers during one load.
 struct SceneContext {
@@ -42,6 +46,8 @@ struct SceneContext {
   std::string particle_file{};                 ///< the particle CSV's path (for messages)
   std::vector<int> particle_lines{};           ///< the CSV line of each particle
   std::optional<Field> particle_file_field{};  ///< particles.file
+  /// Fluid and solid bodies of `geometry` whose shape is a mesh file, by body name.
+  std::map<std::string, std::shared_ptr<const MeshBody>> mesh_bodies{};
   /// Absolute tolerance for region and box membership [length].
   [[nodiscard]] double tolerance() const;
 };
@@ -62,6 +68,10 @@ void check_open_boundary(SceneContext& ctx);
 void check_wall_planes(SceneContext& ctx, const Field& root);
 void read_species(SceneContext& ctx, const Field& root);
 void read_reactions(SceneContext& ctx, const Field& root);
+/// A boundary flux's `surface: name` (and `group`, `region`; scene_flux_surfaces.cpp): sets the
+/// reaction's boundary particles and areas, or says why not and returns false.
+bool read_surface_share(SceneContext& ctx, const Field& f, const Field& root,
+                        const std::string& name, Reaction& rx);
 /// Top-level "boundary_fluxes" (scene_fluxes.cpp), after read_reactions: each one a reaction
 /// with a law and its boundary particles and areas.
 void read_boundary_fluxes(SceneContext& ctx, const Field& root);

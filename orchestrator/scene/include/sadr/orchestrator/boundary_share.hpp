@@ -38,11 +38,14 @@ struct BoundaryShare {
 /// surface, distance[i] finite); with d_min the smallest of their distances, the layer is those
 /// with distance[i] < d_min + (1 - 1e-9) `spacing` (a shell one lattice spacing thick, which
 /// holds exactly one lattice row next to a plane surface). A_i = A l_i^(d-1) / sum_j l_j^(d-1)
-/// (l_i = V_i^(1/d)); A is `area`, or without it the layer's estimate sum_j l_j^(d-1). Throws
-/// InvalidArgument when no fluid particle lies next to the surface.
+/// (l_i = V_i^(1/d)); A is `area`, or without it the layer's estimate sum_j l_j^(d-1). A
+/// non-empty `part` (one entry per particle) keeps only the candidates i with part[i] != 0 (a
+/// part of the surface: the layer and d_min are then the part's). Throws InvalidArgument when
+/// no fluid particle lies next to the surface (or its part).
 [[nodiscard]] BoundaryShare surface_share(const ParticleState& particles,
                                           std::span<const int> surface_id,
                                           std::span<const double> distance, int surface,
-                                          double spacing, std::optional<double> area);
+                                          double spacing, std::optional<double> area,
+                                          std::span<const std::uint8_t> part = {});
 
 }  // namespace sadr::orchestrator
