@@ -327,7 +327,8 @@ class Reaction(_Part):
 class BoundaryFlux(_Part):
     """A flux through a box face or the ``surface`` of a fluid or solid body of the geometry
     (``boundary_fluxes``) whose density is ``law``: an influx of ``species``, or ``equation``
-    (reactants leave, products enter)."""
+    (reactants leave, products enter). ``group`` (with ``surface``): one physical group of the
+    body's mesh file, the part of its surface that takes the flux."""
 
     name: str | None = None
     species: str | None = None
@@ -336,6 +337,7 @@ class BoundaryFlux(_Part):
     surface: str | None = None
     region: str | None = None
     law: Law | None = None
+    group: str | None = None
     extra: dict = field(default_factory=dict)
     _nested: ClassVar[dict[str, Any]] = {"law": Law}
 
@@ -543,11 +545,13 @@ class Model:
 
     def add_boundary_flux(self, face: str | None, law: Law, *, species: str | None = None,
                           equation: str | None = None, region: str | None = None,
-                          name: str | None = None, surface: str | None = None) -> BoundaryFlux:
+                          name: str | None = None, surface: str | None = None,
+                          group: str | None = None) -> BoundaryFlux:
         """A flux through box face ``face`` (``x-`` ... ``z+``) with density ``law``; or, with
-        ``face=None`` and ``surface``, through the surface of that fluid or solid body."""
+        ``face=None`` and ``surface``, through the surface of that fluid or solid body (only its
+        physical group ``group`` of a mesh file, and only its part in ``region``, when given)."""
         f = BoundaryFlux(name=name, species=species, equation=equation, face=face,
-                         surface=surface, region=region, law=law)
+                         surface=surface, region=region, law=law, group=group)
         self.boundary_fluxes.append(f)
         return f
 
