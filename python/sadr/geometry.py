@@ -340,7 +340,10 @@ class Body(Part):
     """A body: ``name`` (a region of the scene), ``role`` (fluid, solid,
     region), ``shape``; fluid and solid bodies may name their ``wall_layer``
     and ``fluid_layer`` regions (``layer_thickness`` deep), region bodies
-    may restrict their members to ``kinds``."""
+    may restrict their members to ``kinds``; a solid body's ``motion`` is its
+    walls' prescribed motion, a map ``{velocity: [..]}`` and/or
+    ``{angular_velocity: w, center: [..], axis: [..]}`` (docs/scene-format.md
+    "Moving walls")."""
 
     name: str | None = None
     role: str | None = None
@@ -349,6 +352,7 @@ class Body(Part):
     fluid_layer: str | None = None
     layer_thickness: Number | None = None
     kinds: list[str] | None = None
+    motion: dict | None = None
     extra: dict = field(default_factory=dict)
     _nested: ClassVar[dict[str, Any]] = {"shape": Shape}
 
@@ -380,7 +384,7 @@ class Geometry(Part):
     _nested: ClassVar[dict[str, Any]] = {"relax": Relax, "bodies": [Body]}
 
     def add_body(self, name: str, role: str, shape: Shape, **keys: Any) -> Body:
-        """Appends a body; ``keys``: wall_layer, fluid_layer, layer_thickness, kinds."""
+        """Appends a body; ``keys``: wall_layer, fluid_layer, layer_thickness, kinds, motion."""
         body = Body.from_dict({"name": name, "role": role, "shape": None, **keys})
         body.shape = shape
         self.bodies = (self.bodies or []) + [body]

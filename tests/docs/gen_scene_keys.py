@@ -27,6 +27,7 @@ SECTIONS = [
     ("GeometryKeys", "geometry"),
     ("RelaxKeys", "geometry.relax"),
     ("BodyKeys", "geometry.bodies[]"),
+    ("MotionKeys", "geometry.bodies[].motion"),
     ("ShapeKeys", "geometry.bodies[].shape (and every nested shape)"),
     ("RotateKeys", "geometry.bodies[].shape.rotate (3D)"),
     ("FluidKeys", "fluid"),

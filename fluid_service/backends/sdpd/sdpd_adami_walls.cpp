@@ -56,7 +56,7 @@ void SdpdBackend::adami_wall_values(const Y& y) {
     adami_p_[w] = p;
     pd2_[w] = p * nd_inv * nd_inv;
     for (int a = 0; a < D; ++a)
-      adami_v_[3 * w + a] = sdpd::adami_wall_velocity(0.0, sum_vw[a], sum_w);
+      adami_v_[3 * w + a] = sdpd::adami_wall_velocity(y.v[3 * w + a], sum_vw[a], sum_w);
   }
 }
 

@@ -113,8 +113,8 @@ void SdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
   for (std::size_t i = 0; i < n; ++i) pbox_.wrap(&y_.x[3 * i]);
   y_.v = initial.velocities.empty() ? std::vector<double>(3 * n, 0.0) : initial.velocities;
   for (std::size_t i = 0; i < n; ++i) {
+    // a wall particle's velocity is its prescribed one (moving walls; never integrated)
     for (int a = dim; a < 3; ++a) y_.v[3 * i + a] = 0.0;
-    if (wall_[i]) y_.v[3 * i] = y_.v[3 * i + 1] = y_.v[3 * i + 2] = 0.0;
   }
   y_.rho = initial.densities;
   y_.c.assign(model.species.size(), std::vector<double>(n, 0.0));

@@ -182,6 +182,9 @@ void SdpdBackend::gather_pairs(std::size_t i, const Y& y, const GatherTerms& t, 
     if (!pair_geometry<D>(x, i, j, g)) continue;
     std::array<double, D> v;
     for (int a = 0; a < D; ++a) v[a] = vi[a] - y.v[3 * j + a];
+    // walls are rigid: a wall-wall pair does not compress (moving walls: a lid next to walls at
+    // rest; walls at rest have v = 0 there anyway)
+    if (wall_i && wall_[j]) v.fill(0.0);
     if (!t.summation)
       s.drho += t.continuity.with_volume(g, v, mass_[j], vol_[j], y.rho[i], y.rho[j]);
     if (wall_i) {  // walls: density only, plus species on WallCondition::kFree walls
@@ -194,13 +197,14 @@ void SdpdBackend::gather_pairs(std::size_t i, const Y& y, const GatherTerms& t, 
       }
       continue;
     }
-    // Morris et al. 1997 extrapolated wall values: v_ij = beta v_i in the viscous term, and
-    // beta (C_w - C_i) for Dirichlet species (the held value on the wall surface).
+    // Morris et al. 1997 extrapolated wall values: v_ij = beta (v_i - v_w) in the viscous term
+    // (v_w the wall particle's prescribed velocity, v = v_i - v_j), and beta (C_w - C_i) for
+    // Dirichlet species (the held value on the wall surface).
     double beta = 1.0;
     if (morris_.enabled() && morris_.extrapolates(j)) {
       beta = morris_.beta<D>(&x[3 * i], g.x.data(), j, t.h);
       std::array<double, D> vb;
-      for (int a = 0; a < D; ++a) vb[a] = beta * vi[a];
+      for (int a = 0; a < D; ++a) vb[a] = beta * v[a];
       const SdpdMomentumTerm pressure_only{0.0};
       pressure_only(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], v, s.force);
       const SdpdMomentumTerm viscous_only{t.momentum.friction};

@@ -21,8 +21,8 @@ namespace {
 
 constexpr std::array<std::string_view, 7> kGeometryKeys{
     "spacing", "lattice", "density", "wall_depth", "offset", "relax", "bodies"};
-constexpr std::array<std::string_view, 7> kBodyKeys{
-    "name", "role", "shape", "wall_layer", "fluid_layer", "layer_thickness", "kinds"};
+constexpr std::array<std::string_view, 8> kBodyKeys{
+    "name", "role", "shape", "wall_layer", "fluid_layer", "layer_thickness", "kinds", "motion"};
 constexpr std::array<std::string_view, 2> kRelaxKeys{"tolerance", "max_iterations"};
 constexpr std::array<std::string_view, 3> kRoles{"fluid", "solid", "region"};
 constexpr std::array<std::string_view, 2> kLattices{"cubic", "hexagonal"};
@@ -189,6 +189,13 @@ void read_geometry(SceneContext& ctx, const Field& root) {
               "center: [0.5, 0.5], radius: 0.1}");
     }
     b.surface_id = b.role == "region" ? -1 : static_cast<int>(i) + 1;
+    if (const Field mf = YamlReader::child(f, "motion"); YamlReader::present(mf)) {
+      if (b.role == "solid") {
+        b.motion = read_wall_motion(ctx, f);
+      } else {
+        r.error(mf, "'motion' applies to solid bodies (their wall particles move)");
+      }
+    }
     bodies.push_back(std::move(b));
   }
   if (!dx || !(h > 0) || r.diag().size() != errors_before) return;
@@ -400,6 +407,10 @@ void read_geometry(SceneContext& ctx, const Field& root) {
       if (b.role == "fluid" ? !wall : (wall && mine)) own.push_back(ui);
       if (mine && wall && p.distance[i] < b.layer_thickness) walls.push_back(ui);
       if (mine && !wall && p.distance[i] < b.layer_thickness) fluid.push_back(ui);
+    }
+    if (b.motion) {
+      apply_body_motion(ctx, YamlReader::child(b.field, "motion"), *b.motion, own,
+                        report->surface_normal);
     }
     add_region(ctx, b.name, std::move(own), b.kinds);
     if (!b.wall_layer.empty()) add_region(ctx, b.wall_layer, std::move(walls), {});

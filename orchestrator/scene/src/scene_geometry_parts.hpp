@@ -21,6 +21,7 @@
 #include "sadr/geometry/particles.hpp"
 #include "sadr/geometry/shape.hpp"
 #include "scene_parts.hpp"
+#include "scene_wall_motion.hpp"
 
 namespace sadr::orchestrator::detail {
 
@@ -61,6 +62,7 @@ struct BodyRead {
   double layer_thickness = 0.0;
   std::vector<ParticleKind> kinds;
   int surface_id = -1;
+  std::optional<WallMotion> motion;  ///< solid bodies: the walls' prescribed motion
 };
 
 class GeometryReader {

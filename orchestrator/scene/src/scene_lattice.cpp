@@ -13,6 +13,7 @@
 #include "sadr/common/status.hpp"
 #include "sadr/orchestrator/machine_limits.hpp"
 #include "scene_parts.hpp"
+#include "scene_wall_motion.hpp"
 
 namespace sadr::orchestrator::detail {
 
@@ -30,6 +31,7 @@ struct FillRule {
   double density = 1.0;
   double mass_factor = 1.0;
   std::array<double, 3> velocity{};
+  Field velocity_field{};  ///< where a wall rule's velocity is given (moving walls)
 };
 
 /// Lattice coordinates along one axis: periodic axes get cell centres
@@ -108,15 +110,12 @@ void build_lattice(SceneContext& ctx, const Field& particles, double dx, double 
       if (ctx.dimension_ok) {
         if (auto v = r.vector(f, "velocity", d, "length/time", false)) rule.velocity = *v;
       }
-      // The fluid backends hold wall particles at rest (no moving walls): a
-      // velocity there would be dropped without a word.
+      // A wall rule's velocity is the walls' prescribed velocity (they keep their positions).
+      rule.velocity_field = YamlReader::child(f, "velocity");
       if (rule.kind == ParticleKind::kWall &&
           std::any_of(rule.velocity.begin(), rule.velocity.end(),
                       [](double v) { return v != 0; })) {
-        r.error(YamlReader::child(f, "velocity"),
-                "a velocity on wall particles is not supported: the fluid backends keep walls "
-                "at rest (no moving walls, so no Couette flow by wall motion); remove it, or "
-                "drive the flow with fluid.gravity or an open boundary");
+        require_moving_walls(ctx, rule.velocity_field);
       }
       if (rule.region) rules.push_back(rule);
     }
@@ -157,6 +156,7 @@ void build_lattice(SceneContext& ctx, const Field& particles, double dx, double 
   const double tol = ctx.tolerance();
   ParticleState& p = s.particles;
   p.dimension = d;
+  std::vector<std::vector<std::uint32_t>> members(rules.size());  // moving wall rules' particles
   for (const double z : axes[2]) {
     for (const double y : axes[1]) {
       for (const double x : axes[0]) {
@@ -168,10 +168,17 @@ void build_lattice(SceneContext& ctx, const Field& particles, double dx, double 
           p.densities.push_back(rule.density);
           p.masses.push_back(rule.density * cell_volume * rule.mass_factor);
           p.kinds.push_back(rule.kind);
+          const auto k = static_cast<std::size_t>(&rule - rules.data());
+          if (rule.kind == ParticleKind::kWall) {
+            members[k].push_back(static_cast<std::uint32_t>(p.kinds.size() - 1));
+          }
           break;
         }
       }
     }
+  }
+  for (std::size_t k = 0; k < rules.size(); ++k) {
+    check_face_wall_motion(ctx, rules[k].velocity_field, rules[k].velocity, members[k]);
   }
 }
 
@@ -312,6 +319,11 @@ void read_particle_file(SceneContext& ctx, const Field& file_field, const std::s
         report(std::string("column '") + "xyz"[a] + "' must be 0 in a " +
                std::to_string(s.box.dimension) + "D scene, got " + format_number(x[ua]));
       }
+    }
+    if (kind == ParticleKind::kWall && (v[0] != 0 || v[1] != 0 || v[2] != 0) &&
+        !backend_moves_walls(ctx)) {
+      report("a wall particle with a velocity (a moving wall): the fluid backend '" +
+             s.fluid.backend + "' keeps walls at rest; allowed with: sdpd");
     }
     p.positions.insert(p.positions.end(), x.begin(), x.end());
     p.velocities.insert(p.velocities.end(), v.begin(), v.end());

@@ -54,6 +54,10 @@ struct Capabilities {
   /// particles next to a face). Without it the scene loader refuses them for deterministic
   /// species (stochastic ones are the SSA's and need nothing of the backend).
   bool boundary_fluxes = true;
+  /// Wall particles with a prescribed velocity (scene: a wall fill rule's `velocity`, a solid
+  /// body's `motion`): the backend holds it and its wall models use it. Without it the scene
+  /// loader refuses a moving wall (it would be held at rest).
+  bool moving_walls = false;
 };
 
 /// Peak resident memory per particle with this backend (bench/memory_per_particle.py: the slope
