@@ -11,6 +11,7 @@
 /// number density d_i = rho_i / m_i, P_i the pressure.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <type_traits>
 
@@ -93,6 +94,44 @@ inline double adami_wall_pressure(double sum_pw, double sum_hydro, double sum_w)
 inline double adami_wall_velocity(double v_wall, double sum_vw, double sum_w) {
   return 2.0 * v_wall - sum_vw / sum_w;
 }
+
+/// Adami walls on a surface of the geometry (sdpd_adami_walls.cpp): the sums of a wall particle
+/// over its fluid neighbours f at distances s_f from the surface, with weights W_wf, for the
+/// least-squares fit u_a(s) = v_wall + alpha s + gamma s^2 of each velocity component.
+template <int D>
+struct SurfaceFit {
+  /// The fit is used when det >= kConditioning S2 S4 (S_k = sum_f W s^k): the distances spread
+  /// enough to tell the curvature from the slope; else the linear extrapolation through the mean
+  /// distance, r = d / max(S1 / S0, kMinDistance h), at most kMaxRatio.
+  static constexpr double kConditioning = 0.1, kMinDistance = 1e-3, kMaxRatio = 3.0;
+  double s1 = 0, s2 = 0, s3 = 0, s4 = 0;
+  std::array<double, D> su1{}, su2{};
+
+  void add(double s, double w, const double* v) {
+    const double ws = w * s, ws2 = ws * s;
+    s1 += ws;
+    s2 += ws2;
+    s3 += ws2 * s;
+    s4 += ws2 * s * s;
+    for (int a = 0; a < D; ++a) {
+      su1[a] += ws * v[a];
+      su2[a] += ws2 * v[a];
+    }
+  }
+  /// Component a of the wall particle's velocity at `depth` behind the surface moving at v_wall,
+  /// given v~ = sum_vw / sum_w and the kernel support h.
+  [[nodiscard]] double wall_velocity(int a, double v_wall, double depth, double sum_vw,
+                                     double sum_w, double h) const {
+    const double det = s2 * s4 - s3 * s3;
+    if (det > 0 && det >= kConditioning * s2 * s4) {
+      const double b1 = su1[a] - v_wall * s1, b2 = su2[a] - v_wall * s2;
+      const double alpha = (b1 * s4 - b2 * s3) / det, gamma = (s2 * b2 - s3 * b1) / det;
+      return v_wall - alpha * depth + gamma * depth * depth;
+    }
+    const double r = std::min(depth / std::max(s1 / sum_w, kMinDistance * h), kMaxRatio);
+    return v_wall - r * (sum_vw / sum_w - v_wall);
+  }
+};
 
 }  // namespace sadr::fluid::sdpd
 
