@@ -119,17 +119,21 @@ struct SurfaceFit {
     }
   }
   /// Component a of the wall particle's velocity at `depth` behind the surface moving at v_wall,
-  /// given v~ = sum_vw / sum_w and the kernel support h.
+  /// given v~ = sum_vw / sum_w and the kernel support h. Either way v_w - v_wall is -r (v~ -
+  /// v_wall) with r in [0, kMaxRatio]: the fit is clamped to that range, so that the thermal noise
+  /// of a few neighbours is not amplified beyond the linear extrapolation's.
   [[nodiscard]] double wall_velocity(int a, double v_wall, double depth, double sum_vw,
                                      double sum_w, double h) const {
+    const double rel = sum_vw / sum_w - v_wall;  // v~ - v_wall
     const double det = s2 * s4 - s3 * s3;
     if (det > 0 && det >= kConditioning * s2 * s4) {
       const double b1 = su1[a] - v_wall * s1, b2 = su2[a] - v_wall * s2;
       const double alpha = (b1 * s4 - b2 * s3) / det, gamma = (s2 * b2 - s3 * b1) / det;
-      return v_wall - alpha * depth + gamma * depth * depth;
+      const double lo = std::min(0.0, -kMaxRatio * rel), hi = std::max(0.0, -kMaxRatio * rel);
+      return v_wall + std::clamp(-alpha * depth + gamma * depth * depth, lo, hi);
     }
     const double r = std::min(depth / std::max(s1 / sum_w, kMinDistance * h), kMaxRatio);
-    return v_wall - r * (sum_vw / sum_w - v_wall);
+    return v_wall - r * rel;
   }
 };
 
