@@ -17,7 +17,8 @@
 /// of the fluid neighbours' velocities is extended to the wall particle, v_w = v_wall - alpha d_w
 /// + gamma d_w^2, exact for a profile quadratic in the distance (Poiseuille flow); where the
 /// neighbours' distances do not spread enough for the curvature (the deeper layers), the linear
-/// v_w = v_wall - r (v~ - v_wall), r = d_w / (sum_f W_wf s_f / sum_f W_wf), at most 3.
+/// v_w = v_wall - r (v~ - v_wall), r = d_w / (sum_f W_wf s_f / sum_f W_wf), at most 3; either is
+/// clamped to |v_w - v_wall| <= 3 max_f |v_f - v_wall| (sdpd::SurfaceFit).
 /// A wall particle without a fluid neighbour keeps p = 0 at the reference density and v = 0. The
 /// wall's continuity density, its noise factor and its species terms are those of stationary
 /// walls.
