@@ -216,8 +216,8 @@ Scene disk(bool fluid_inside) {
     const double depth = fluid_inside ? rr - kR : kR - rr;  // > 0 behind the surface
     if (depth >= kH || (!fluid_inside && rr > 1.15)) continue;
     const bool wall = depth > 0;
-    s.state.positions.insert(s.state.positions.end(), {all.positions[3 * i],
-                                                       all.positions[3 * i + 1], 0.0});
+    s.state.positions.insert(s.state.positions.end(),
+                             {all.positions[3 * i], all.positions[3 * i + 1], 0.0});
     s.state.kinds.push_back(wall ? ParticleKind::kWall : ParticleKind::kFluid);
     s.state.masses.push_back(all.masses[i]);
     s.state.densities.push_back(1.0);
