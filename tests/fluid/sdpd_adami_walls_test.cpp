@@ -56,6 +56,15 @@ Scene column(WallModel wm, double ux, double uy) {
   return s;
 }
 
+// The Adami wall velocities (3N) of one evaluation of scene s.
+std::vector<double> wall_velocities(const Scene& s) {
+  SdpdBackend b;
+  b.initialize(s.model, s.state, {});
+  SdpdBackend::Rates r;
+  b.evaluate_current(1, r);
+  return b.adami_wall_velocity();
+}
+
 TEST(SdpdAdamiWalls, HydrostaticColumnGivesThePressureAtTheWallDepth) {
   Scene s = column(WallModel::kAdami, 0.0, 0.0);
   SdpdBackend b;
@@ -89,11 +98,7 @@ TEST(SdpdAdamiWalls, HydrostaticColumnGivesThePressureAtTheWallDepth) {
 
 TEST(SdpdAdamiWalls, UniformFluidVelocityGivesMinusItAtTheWall) {
   Scene s = column(WallModel::kAdami, 0.7, -0.2);
-  SdpdBackend b;
-  b.initialize(s.model, s.state, {});
-  SdpdBackend::Rates r;
-  b.evaluate_current(1, r);
-  const auto& v = b.adami_wall_velocity();
+  const std::vector<double> v = wall_velocities(s);
   for (std::size_t i = 0; i < s.state.size(); ++i) {
     if (s.state.kind(i) != ParticleKind::kWall) {
       EXPECT_EQ(v[3 * i], 0.0);
@@ -156,11 +161,7 @@ Scene column_with_surfaces(double c) {
 
 TEST(SdpdAdamiWalls, ALinearProfileIsExtendedThroughTheSurfaceExactly) {
   Scene s = column_with_surfaces(0.0);
-  SdpdBackend b;
-  b.initialize(s.model, s.state, {});
-  SdpdBackend::Rates r;
-  b.evaluate_current(1, r);
-  const auto& v = b.adami_wall_velocity();
+  const std::vector<double> v = wall_velocities(s);
   int reached = 0;
   for (std::size_t k = 0; k < s.model.wall_tangents.size(); ++k) {
     const std::size_t i = s.model.wall_tangents.particles[k];
