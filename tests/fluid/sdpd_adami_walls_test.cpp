@@ -4,9 +4,12 @@
 // wall pressure is the hydrostatic pressure at the wall particle's depth; a uniform fluid velocity
 // u gives the wall velocity -u; wall particles out of reach of the fluid keep p = 0, v = 0; the
 // fluid force differs from stationary walls only in fluid-wall pairs; a backend whose schema lacks
-// the wall model refuses it.
+// the wall model refuses it. Walls that know their surface (FluidModel::wall_tangents) extend a
+// velocity profile linear or quadratic in the distance from a surface off the lattice exactly, and
+// estimate a circle's curvature.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -53,6 +56,15 @@ Scene column(WallModel wm, double ux, double uy) {
   return s;
 }
 
+// The Adami wall velocities (3N) of one evaluation of scene s.
+std::vector<double> wall_velocities(const Scene& s) {
+  SdpdBackend b;
+  b.initialize(s.model, s.state, {});
+  SdpdBackend::Rates r;
+  b.evaluate_current(1, r);
+  return b.adami_wall_velocity();
+}
+
 TEST(SdpdAdamiWalls, HydrostaticColumnGivesThePressureAtTheWallDepth) {
   Scene s = column(WallModel::kAdami, 0.0, 0.0);
   SdpdBackend b;
@@ -86,11 +98,7 @@ TEST(SdpdAdamiWalls, HydrostaticColumnGivesThePressureAtTheWallDepth) {
 
 TEST(SdpdAdamiWalls, UniformFluidVelocityGivesMinusItAtTheWall) {
   Scene s = column(WallModel::kAdami, 0.7, -0.2);
-  SdpdBackend b;
-  b.initialize(s.model, s.state, {});
-  SdpdBackend::Rates r;
-  b.evaluate_current(1, r);
-  const auto& v = b.adami_wall_velocity();
+  const std::vector<double> v = wall_velocities(s);
   for (std::size_t i = 0; i < s.state.size(); ++i) {
     if (s.state.kind(i) != ParticleKind::kWall) {
       EXPECT_EQ(v[3 * i], 0.0);
@@ -128,6 +136,134 @@ TEST(SdpdAdamiWalls, OnlyTheFluidNextToTheWallsFeelsTheWallModel) {
     }
   }
   EXPECT_GT(near, 0);
+}
+
+// The column with its wall surfaces between the lattice rows, y = kYb above the bottom wall rows
+// and y = kYt below the top ones (the fluid rows are at 0.05 ... 0.95), as the geometry would send
+// them; fluid velocity u_x = kA s + c s^2, s the distance from the nearer surface.
+constexpr double kYb = 0.02, kYt = 0.985, kA = 1.7;
+Scene column_with_surfaces(double c) {
+  Scene s = column(WallModel::kAdami, 0.0, 0.0);
+  for (std::size_t i = 0; i < s.state.size(); ++i) {
+    const double y = s.state.positions[3 * i + 1];
+    if (s.state.kind(i) == ParticleKind::kWall) {
+      s.model.wall_tangents.particles.push_back(static_cast<std::uint32_t>(i));
+      s.model.wall_tangents.depths.push_back(y < 0.5 ? kYb - y : y - kYt);
+      const std::vector<double> n = {0.0, y < 0.5 ? 1.0 : -1.0, 0.0};
+      s.model.wall_tangents.normals.insert(s.model.wall_tangents.normals.end(), n.begin(), n.end());
+    } else {
+      const double d = std::min(y - kYb, kYt - y);
+      s.state.velocities[3 * i] = kA * d + c * d * d;
+    }
+  }
+  return s;
+}
+
+TEST(SdpdAdamiWalls, ALinearProfileIsExtendedThroughTheSurfaceExactly) {
+  Scene s = column_with_surfaces(0.0);
+  const std::vector<double> v = wall_velocities(s);
+  int reached = 0;
+  for (std::size_t k = 0; k < s.model.wall_tangents.size(); ++k) {
+    const std::size_t i = s.model.wall_tangents.particles[k];
+    if (v[3 * i] == 0.0) continue;  // out of reach of the fluid
+    ++reached;
+    // Adami's own 2 v_wall - v~ would give -kA times the neighbours' mean distance, not -kA d.
+    // The second row reaches only the first fluid row, at s = 0.03 (bottom) or 0.035 (top): its
+    // ratio d / s is capped at 3.
+    const double d = s.model.wall_tangents.depths[k];
+    const double s_row = s.state.positions[3 * i + 1] < 0.5 ? 0.05 - kYb : kYt - 0.95;
+    EXPECT_NEAR(v[3 * i], -kA * std::min(d, 3.0 * s_row), 1e-12) << i;
+    EXPECT_EQ(v[3 * i + 1], 0.0) << i;
+  }
+  EXPECT_EQ(reached, 4 * kN);  // the two rows within h below and above
+}
+
+TEST(SdpdAdamiWalls, AQuadraticProfileIsExtendedExactlyNextToTheSurface) {
+  constexpr double kC = -6.0;  // u_x = kA s + kC s^2: a Poiseuille-like bend
+  Scene s = column_with_surfaces(kC);
+  SdpdBackend b;
+  b.initialize(s.model, s.state, {});
+  SdpdBackend::Rates r;
+  b.evaluate_current(1, r);
+  const auto& v = b.adami_wall_velocity();
+  int first_row = 0;
+  for (std::size_t k = 0; k < s.model.wall_tangents.size(); ++k) {
+    const std::size_t i = s.model.wall_tangents.particles[k];
+    const double d = s.model.wall_tangents.depths[k];
+    if (d > kDx) continue;  // the first row: its neighbours span the profile's bend
+    ++first_row;
+    EXPECT_NEAR(v[3 * i], -kA * d + kC * d * d, 1e-10) << i;
+  }
+  EXPECT_EQ(first_row, 2 * kN);
+}
+
+// A 2D disk of fluid of radius kR (off the lattice) inside a ring of wall particles up to h
+// beyond it, each with its tangent plane, or (inside = false) the fluid outside a solid disk.
+Scene disk(bool fluid_inside) {
+  constexpr double kR = 0.83, kCx = 1.2;
+  Scene s;
+  test::LatticeSpec ls;
+  ls.n = {24, 24, 1};
+  ls.dx = kDx;
+  const ParticleState all = test::make_lattice(ls, s.model.box);
+  s.model.smoothing_length = kH;
+  s.model.sound_speed = kC0;
+  s.model.shear_viscosity = 0.1;
+  s.model.wall_model = WallModel::kAdami;
+  s.state.dimension = 2;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const double dx = all.positions[3 * i] - kCx, dy = all.positions[3 * i + 1] - kCx;
+    const double rr = std::hypot(dx, dy);
+    const double depth = fluid_inside ? rr - kR : kR - rr;  // > 0 behind the surface
+    if (depth >= kH || (!fluid_inside && rr > 1.15)) continue;
+    const bool wall = depth > 0;
+    s.state.positions.insert(s.state.positions.end(),
+                             {all.positions[3 * i], all.positions[3 * i + 1], 0.0});
+    s.state.kinds.push_back(wall ? ParticleKind::kWall : ParticleKind::kFluid);
+    s.state.masses.push_back(all.masses[i]);
+    s.state.densities.push_back(1.0);
+    s.state.ids.push_back(s.state.ids.size());
+    // u_x linear in the distance from the circle, zero on it
+    s.state.velocities.insert(s.state.velocities.end(), {wall ? 0.0 : -kA * depth, 0.0, 0.0});
+    if (wall) {
+      const double sign = fluid_inside ? -1.0 : 1.0;  // the normal into the fluid
+      s.model.wall_tangents.particles.push_back(static_cast<std::uint32_t>(s.state.size() - 1));
+      s.model.wall_tangents.depths.push_back(depth);
+      s.model.wall_tangents.normals.insert(s.model.wall_tangents.normals.end(),
+                                           {sign * dx / rr, sign * dy / rr, 0.0});
+    }
+  }
+  return s;
+}
+
+TEST(SdpdAdamiWalls, TheCurvatureOfACircleIsEstimatedFromItsWallParticles) {
+  for (const bool inside : {true, false}) {
+    Scene s = disk(inside);
+    SdpdBackend b;
+    b.initialize(s.model, s.state, {});
+    const auto& kappa = b.adami_curvature();
+    ASSERT_EQ(kappa.size(), s.model.wall_tangents.size());
+    const double want = (inside ? 1.0 : -1.0) / 0.83;  // + where the fluid is on the concave side
+    double worst = 0;
+    for (const double k : kappa) worst = std::max(worst, std::fabs(k - want));
+    EXPECT_LT(worst, 0.05 / 0.83) << "inside " << inside;  // 5 % of 1/R
+
+    // the profile linear in the distance from the circle is extended to -kA d within 2 % of
+    // kA dx (with the tangent planes' distances alone, kappa = 0, both cases fail this)
+    SdpdBackend::Rates r;
+    b.evaluate_current(1, r);
+    const auto& v = b.adami_wall_velocity();
+    double err = 0;
+    int first_row = 0;
+    for (std::size_t k = 0; k < s.model.wall_tangents.size(); ++k) {
+      const std::size_t i = s.model.wall_tangents.particles[k];
+      if (v[3 * i] == 0.0 || s.model.wall_tangents.depths[k] > kDx) continue;
+      ++first_row;
+      err = std::max(err, std::fabs(v[3 * i] + kA * s.model.wall_tangents.depths[k]));
+    }
+    EXPECT_GT(first_row, 30) << "inside " << inside;
+    EXPECT_LT(err, 0.02 * kA * kDx) << "inside " << inside;
+  }
 }
 
 TEST(SdpdAdamiWalls, ABackendWithoutTheWallModelRefusesIt) {

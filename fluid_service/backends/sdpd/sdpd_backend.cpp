@@ -128,6 +128,7 @@ void SdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
   adami_ = model.wall_model == WallModel::kAdami;
   adami_p_.clear();
   adami_v_.clear();
+  adami_surfaces();
   tvf_shift_pressure_ =
       tvf.pressure * model.reference_density * model.sound_speed * model.sound_speed;
   half_ok_ = !tvf_ && !open_.enabled() && !morris_.enabled() && species_.transported().empty() &&
@@ -217,7 +218,8 @@ std::size_t SdpdBackend::memory_bytes() const {
   return yb(y_) + yb(ytmp_) + rb(r0_) + rb(r1_) + vb(nlist_.offsets) + vb(nlist_.indices) +
          vb(list_ref_x_) + vb(wall_) + morris_.bytes() + open_.bytes() + vb(mass_) + vb(kinds_) +
          vb(ids_) + vb(pd2_) + vb(inv_nd_) + vb(vol_) + vb(sqrt_inv_nd_) + noise_bytes +
-         vb(adami_p_) + vb(adami_v_) + slabs_.bytes() + vb(hin_) + vb(hacc_);
+         vb(adami_p_) + vb(adami_v_) + vb(adami_tangent_) + vb(adami_kappa_) + slabs_.bytes() +
+         vb(hin_) + vb(hacc_);
 }
 
 void register_sdpd_backend(BackendRegistry& registry) {

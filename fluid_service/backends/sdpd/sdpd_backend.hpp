@@ -70,6 +70,8 @@ class SdpdBackend final : public BackendBase {
   [[nodiscard]] bool adami_walls() const { return adami_; }
   [[nodiscard]] const std::vector<double>& adami_wall_pressure() const { return adami_p_; }
   [[nodiscard]] const std::vector<double>& adami_wall_velocity() const { return adami_v_; }
+  /// The mean curvature per FluidModel::wall_tangents entry (Adami walls; testing aid).
+  [[nodiscard]] const std::vector<double>& adami_curvature() const { return adami_kappa_; }
   /// Heap bytes held by the backend (state, scratch, neighbour list), for the benchmark.
   [[nodiscard]] std::size_t memory_bytes() const;
   /// Stability limits at the current state (evaluates the rates once, on a copy of the state
@@ -187,6 +189,9 @@ class SdpdBackend final : public BackendBase {
   /// (pd2_, inv_nd_, vol_ of y already filled).
   template <int D>
   void adami_wall_values(const Y& y);
+  /// Adami walls on the geometry's surfaces (sdpd_adami_walls.cpp): adami_tangent_ and
+  /// adami_kappa_ from model_.wall_tangents and the initial wall positions in y_.x.
+  void adami_surfaces();
   template <int D>
   void transport_velocity_terms(const Y& y, double dt, Rates& out);
   /// Wall-free, species-free systems: each pair evaluated once (sdpd_half_path.cpp).
@@ -292,6 +297,11 @@ class SdpdBackend final : public BackendBase {
   /// Adami walls (wall_model kAdami; full-list gather path): the wall values of the evaluation.
   bool adami_ = false;
   std::vector<double> adami_p_, adami_v_;
+  /// Adami walls made by a scene's geometry (FluidModel::wall_tangents): wall particle ->
+  /// WallTangents entry (-1: none; empty: no tangents), whose plane places the no-slip surface,
+  /// and the surface's mean curvature at the entry's surface point (adami_surfaces()).
+  std::vector<std::int32_t> adami_tangent_;
+  std::vector<double> adami_kappa_;
   SlabScheduler slabs_;
   /// fused_substep: hin_ holds y_ (with the noise factor if temperature > 0), hacc_ is zero and
   /// y_moved_ tells whether y_.x has moved more than skin/2 since the list build. Cleared by

@@ -11,7 +11,9 @@
 /// number density d_i = rho_i / m_i, P_i the pressure.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <type_traits>
 
 #include "sadr/fluid/pair_terms.hpp"
@@ -93,6 +95,55 @@ inline double adami_wall_pressure(double sum_pw, double sum_hydro, double sum_w)
 inline double adami_wall_velocity(double v_wall, double sum_vw, double sum_w) {
   return 2.0 * v_wall - sum_vw / sum_w;
 }
+
+/// Adami walls on a surface of the geometry (sdpd_adami_walls.cpp): the sums of a wall particle
+/// over its fluid neighbours f at distances s_f from the surface, with weights W_wf, for the
+/// least-squares fit u_a(s) = v_wall + alpha s + gamma s^2 of each velocity component.
+template <int D>
+struct SurfaceFit {
+  /// The fit is used when det >= kConditioning S2 S4 (S_k = sum_f W s^k): the distances spread
+  /// enough to tell the curvature from the slope; else the linear extrapolation through the mean
+  /// distance, r = d / max(S1 / S0, kMinDistance h), at most kMaxRatio. Either result is clamped
+  /// to |v_w - v_wall| <= kMaxRatio max_f |v_f - v_wall|.
+  static constexpr double kConditioning = 0.1, kMinDistance = 1e-3, kMaxRatio = 3.0;
+  double s1 = 0, s2 = 0, s3 = 0, s4 = 0;
+  std::array<double, D> su1{}, su2{}, vmin{}, vmax{};
+  bool any = false;
+
+  void add(double s, double w, const double* v) {
+    const double ws = w * s, ws2 = ws * s;
+    s1 += ws;
+    s2 += ws2;
+    s3 += ws2 * s;
+    s4 += ws2 * s * s;
+    for (int a = 0; a < D; ++a) {
+      su1[a] += ws * v[a];
+      su2[a] += ws2 * v[a];
+      vmin[a] = any ? std::min(vmin[a], v[a]) : v[a];
+      vmax[a] = any ? std::max(vmax[a], v[a]) : v[a];
+    }
+    any = true;
+  }
+  /// Component a of the wall particle's velocity at `depth` behind the surface moving at v_wall,
+  /// given v~ = sum_vw / sum_w and the kernel support h. The clamp keeps the thermal noise of a
+  /// few neighbours from being amplified without bound; it does not bind on a smooth flow.
+  [[nodiscard]] double wall_velocity(int a, double v_wall, double depth, double sum_vw,
+                                     double sum_w, double h) const {
+    const double det = s2 * s4 - s3 * s3;
+    double dv = 0;  // v_w - v_wall
+    if (det > 0 && det >= kConditioning * s2 * s4) {
+      const double b1 = su1[a] - v_wall * s1, b2 = su2[a] - v_wall * s2;
+      const double alpha = (b1 * s4 - b2 * s3) / det, gamma = (s2 * b2 - s3 * b1) / det;
+      dv = -alpha * depth + gamma * depth * depth;
+    } else {
+      const double r = std::min(depth / std::max(s1 / sum_w, kMinDistance * h), kMaxRatio);
+      dv = -r * (sum_vw / sum_w - v_wall);
+    }
+    const double bound =
+        kMaxRatio * std::max(std::abs(vmax[a] - v_wall), std::abs(vmin[a] - v_wall));
+    return v_wall + std::clamp(dv, -bound, bound);
+  }
+};
 
 }  // namespace sadr::fluid::sdpd
 

@@ -9,7 +9,10 @@ namespace sadr::orchestrator {
 WallTangents scene_wall_tangents(const Scene& scene) {
   WallTangents t;
   const GeometryReport* g = scene.geometry.get();
-  if (scene.fluid.wall_model != "morris" || !scene.fluid.wall_planes.empty() || !g) return t;
+  if ((scene.fluid.wall_model != "morris" && scene.fluid.wall_model != "adami") ||
+      !scene.fluid.wall_planes.empty() || !g) {
+    return t;
+  }
   const ParticleState& p = scene.particles;
   const std::size_t n = p.size();
   if (g->surface_distance.size() != n || g->surface_normal.size() != n) return t;
