@@ -60,6 +60,9 @@ void read_fluid(SceneContext& ctx, const Field& root);
 void check_open_boundary(SceneContext& ctx);
 /// fluid.wall_planes name regions of the scene (after read_regions).
 void check_wall_planes(SceneContext& ctx, const Field& root);
+/// fluid.body_forces (scene_body_forces.cpp): regions holding wall particles (after the
+/// particles and regions).
+void check_body_forces(SceneContext& ctx, const Field& root);
 void read_species(SceneContext& ctx, const Field& root);
 void read_reactions(SceneContext& ctx, const Field& root);
 /// Top-level "boundary_fluxes" (scene_fluxes.cpp), after read_reactions: each one a reaction

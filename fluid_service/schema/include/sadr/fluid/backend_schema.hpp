@@ -54,6 +54,9 @@ struct Capabilities {
   /// particles next to a face). Without it the scene loader refuses them for deterministic
   /// species (stochastic ones are the SSA's and need nothing of the backend).
   bool boundary_fluxes = true;
+  /// Forces and torques on bodies (fluid.body_forces). Without it the scene loader and the
+  /// fluid core refuse the key.
+  bool body_forces = false;
 };
 
 /// Peak resident memory per particle with this backend (bench/memory_per_particle.py: the slope
