@@ -103,6 +103,10 @@ TEST(BodyForcesE2e, DiskHoldsTheDrivenFluidAndFramesAreUnchanged) {
   EXPECT_NE(manifest.find("\"body_forces\""), std::string::npos);
   EXPECT_NE(manifest.find("\"mean_force\""), std::string::npos);
   std::printf("F_x / (M g) at t = 0.5: %.6f\n", end.f[0] / mg);
+  ASSERT_EQ(run(bin("sadr") + " summary " + (d / "out").string(), d / "summary.log"), 0);
+  const std::string summary = read_file(d / "summary.log");
+  EXPECT_NE(summary.find("forces on bodies (body_forces.csv):"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("disk: F = (0.87"), std::string::npos) << summary;
 
   // the same scene without the key: the same frames, no CSV
   const fs::path plain =

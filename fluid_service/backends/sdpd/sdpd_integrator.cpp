@@ -25,6 +25,7 @@ StepReport SdpdBackend::step(std::uint64_t step_index, double time_step) {
   std::uint32_t sub = 0;
   ytmp_.c.resize(y_.c.size());
   const bool fused = fused_ok();
+  if (!bodies_.walls.empty()) take_body_forces();  // (drops what a failed step left)
   while (remaining > 0) {
     const std::uint64_t key = (step_index << 16) | sub;
     bool check = true;
