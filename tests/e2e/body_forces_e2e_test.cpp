@@ -3,8 +3,9 @@
 // periodic flow past a solid disk made by `geometry`, run to steady state. Checked: body_forces.csv
 // has one row per coupling step with its t and dt, the last force on the disk equals the driving
 // force on the fluid, g M (1 %: nothing else holds the fluid), the torque is zero, run.json
-// summarises it; the frames are byte-identical to the same run without the key; the scene loader
-// refuses an unknown body and a region without wall particles.
+// summarises it, a stopped and resumed run writes the same file; the frames are byte-identical
+// to the same run without the key; the scene loader refuses an unknown body and a region
+// without wall particles.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -107,6 +108,19 @@ TEST(BodyForcesE2e, DiskHoldsTheDrivenFluidAndFramesAreUnchanged) {
   const std::string summary = read_file(d / "summary.log");
   EXPECT_NE(summary.find("forces on bodies (body_forces.csv):"), std::string::npos) << summary;
   EXPECT_NE(summary.find("disk: F = (0.87"), std::string::npos) << summary;
+
+  // stopped at t = 0.25 and resumed: the rows up to the checkpoint kept, the same file
+  ASSERT_EQ(run(bin("sadr") + " run " + scene.string() + " -q --embedded --stop-at 0.25 -o " +
+                    (d / "resumed").string(),
+                d / "stop.log"),
+            0)
+      << read_file(d / "stop.log");
+  ASSERT_EQ(
+      run(bin("sadr") + " resume " + (d / "resumed").string() + " -q --embedded", d / "resume.log"),
+      0)
+      << read_file(d / "resume.log");
+  EXPECT_TRUE(read_file(d / "resumed" / "body_forces.csv") ==
+              read_file(d / "out" / "body_forces.csv"));
 
   // the same scene without the key: the same frames, no CSV
   const fs::path plain =
