@@ -246,6 +246,7 @@ class Fluid(_Part):
     open_boundary: OpenBoundary | None = None
     wall_model: str | None = None
     wall_planes: list[WallPlane] | None = None
+    body_forces: list[str] | None = None
     extra: dict = field(default_factory=dict)
     _nested: ClassVar[dict[str, Any]] = {"boussinesq": Boussinesq, "open_boundary": OpenBoundary,
                                          "wall_planes": [WallPlane]}

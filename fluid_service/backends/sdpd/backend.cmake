@@ -4,6 +4,7 @@
 target_sources(sadr_fluid_backends PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_adami_walls.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_backend.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_body_forces.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_fused_step.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_gather.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_half_path.cpp

@@ -135,6 +135,7 @@ void SdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
              !species_.has_reactions() &&
              std::none_of(wall_.begin(), wall_.end(), [](std::uint8_t w) { return w != 0; });
   if (open_.enabled()) apply_open_boundary(0.0);  // (reaction sites follow the kinds it sets)
+  setup_bodies();
   time_ = 0;
   prepared_ = false;
 }

@@ -14,7 +14,8 @@
 ///  - sdpd_limits.cpp: stability limits and the health check;
 ///  - sdpd_restart.cpp: the saved state;
 ///  - sdpd_open_boundary.*: the open channel; sdpd_morris_walls.hpp: Morris walls;
-///  - sdpd_adami_walls.cpp: Adami walls (wall pressure and velocity from the fluid).
+///  - sdpd_adami_walls.cpp: Adami walls (wall pressure and velocity from the fluid);
+///  - sdpd_body_forces.cpp: the force and torque of the fluid on bodies (fluid.body_forces).
 /// Both pair loops are bit-identical on any thread count (no atomics). Wall particles (kind kWall)
 /// never move, keep v = 0 (no-slip), evolve their density by continuity (so the fluid cannot
 /// penetrate) and hold their species values (Dirichlet) or are excluded (no-flux / Neumann ghost).
@@ -57,6 +58,9 @@ class SdpdBackend final : public BackendBase {
     /// Transport velocity only (else empty): s = v~ - v, 3N [length/time]; positions move
     /// with v + s (sdpd_transport_velocity.cpp).
     std::vector<double> shift;
+    /// Forces on bodies only (else empty): per body of FluidModel::body_forces the force (3)
+    /// and torque (3) the fluid exerts on it at this state (sdpd_body_forces.cpp).
+    std::vector<double> body;
   };
   /// Evaluates the rates at the current state with the noise of `noise_step` (testing aid).
   void evaluate_current(std::uint64_t noise_step, Rates& out);
@@ -326,6 +330,25 @@ class SdpdBackend final : public BackendBase {
   std::vector<double> sqrt_inv_nd_;   ///< sqrt(1/d_i) (thermal noise only)
   std::vector<PairScratch> scratch_;
   double time_ = 0;
+
+  // --- forces on bodies (sdpd_body_forces.cpp): FluidModel::body_forces
+  struct Bodies {
+    std::vector<std::vector<std::uint32_t>> walls;  ///< each body's wall particles
+    std::vector<std::array<double, 3>> reference;   ///< torque reference: their centroid
+    std::vector<double> sum;                        ///< integral of Rates::body over the step
+    double duration = 0;                            ///< length integrated [time]
+  };
+  Bodies bodies_;
+  /// bodies_ from the model's groups (each must hold a wall particle) at the initial state.
+  void setup_bodies();
+  /// out.body at the state y whose pair terms evaluate_gather just filled (pd2_, inv_nd_, the
+  /// Adami wall values).
+  template <int D>
+  void body_forces_at(const Y& y, Rates& out) const;
+  /// Adds the sub-step's trapezoidal mean, dt (r0_.body + r1_.body) / 2, to bodies_.sum.
+  void accumulate_body_forces(double dt);
+  /// The step's mean force and torque per body (StepReport::body_forces); resets the sums.
+  std::vector<BodyForce> take_body_forces();
 };
 
 template <int D>

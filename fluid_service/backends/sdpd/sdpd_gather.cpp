@@ -108,6 +108,7 @@ void SdpdBackend::evaluate_gather(Y& y, std::uint64_t noise_step, Rates& out, bo
   }  // omp parallel
   out.max_k_sum = max_k_sum;
   out.max_visc_sum = 2.0 * c_d * max_visc;  // (a + b)/rho_i sum_j V_j F_ij
+  if (!bodies_.walls.empty()) body_forces_at<D>(y, out);
 }
 
 // Fast path (fluid particle, stationary walls): gather the pairs within h into the SIMD block,

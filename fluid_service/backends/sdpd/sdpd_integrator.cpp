@@ -25,6 +25,7 @@ StepReport SdpdBackend::step(std::uint64_t step_index, double time_step) {
   std::uint32_t sub = 0;
   ytmp_.c.resize(y_.c.size());
   const bool fused = fused_ok();
+  if (!bodies_.walls.empty()) take_body_forces();  // (drops what a failed step left)
   while (remaining > 0) {
     const std::uint64_t key = (step_index << 16) | sub;
     bool check = true;
@@ -64,6 +65,7 @@ StepReport SdpdBackend::step(std::uint64_t step_index, double time_step) {
     vmax2 = std::max(vmax2, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }
   rep.max_speed = std::sqrt(vmax2);
+  if (!bodies_.walls.empty()) rep.body_forces = take_body_forces();
   return rep;
 }
 
@@ -135,6 +137,7 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
     if (!model_.species[s].deterministic()) continue;
     for (std::size_t i = 0; i < n; ++i) y_.c[s][i] += 0.5 * dt * (r0_.dc[s][i] + r1_.dc[s][i]);
   }
+  if (!bodies_.walls.empty()) accumulate_body_forces(dt);
   return dt;
 }
 

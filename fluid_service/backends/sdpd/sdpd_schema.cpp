@@ -17,6 +17,7 @@ Backend sdpd_backend() {
   b.capabilities = {
       true, true, true, true, {"stationary", "morris", "adami"}, {"lucy", "wendland_c2"}};
   b.capabilities.moving_walls = true;
+  b.capabilities.body_forces = true;
   b.required = {"sound_speed", "shear_viscosity"};
   b.memory = {{710, 830, 900}, 490};  // measured 704, 821, 863-901 B; sadr 333-489 B
   b.cost = {{550, 550, 8800}};        // measured 2D median 547 ns (9 examples), 3D 8784; 1D: 2D's

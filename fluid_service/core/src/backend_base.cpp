@@ -194,6 +194,11 @@ void BackendBase::initialize(const FluidModel& model, const ParticleState& initi
     throw InvalidArgument(prefix(name()) + "wall_model " + wall +
                           " is not offered (allowed: " + allowed + ")");
   }
+  if (!model.body_forces.empty() && !capabilities().body_forces) {
+    throw InvalidArgument(prefix(name()) + "body_forces ('" + model.body_forces.front().name +
+                          "', ...) are not computed by this backend (allowed: none; backend "
+                          "sdpd computes them)");
+  }
   validate_initial_state(name(), model, initial, concentrations);
   initialized_ = false;
   setup(model, initial, concentrations);

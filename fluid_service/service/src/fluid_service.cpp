@@ -169,6 +169,13 @@ void FluidServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceRepl
   rep.set_particles_moved(r.particles_moved);
   rep.set_stable_time_step(r.stable_dt);
   rep.set_limiting_criterion(r.limiting_criterion);
+  for (const auto& f : r.body_forces) {
+    auto* out = rep.add_body_forces();
+    out->set_name(f.name);
+    out->mutable_force()->Assign(f.force.begin(), f.force.end());
+    out->mutable_torque()->Assign(f.torque.begin(), f.torque.end());
+    out->mutable_reference()->Assign(f.reference.begin(), f.reference.end());
+  }
   apply_inflows();
   last_run_id_ = req.run_id();
   last_step_ = req.step_index();

@@ -223,6 +223,11 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     m.boussinesq.direction =
         vec3(in.buoyancy_direction(), where + ".buoyancy_direction", {0, 1, 0});
   }
+  for (int k = 0; k < in.body_forces_size(); ++k) {  // the regions of the bodies' wall particles
+    const std::string here = where + ".body_forces[" + std::to_string(k) + "]";
+    m.body_forces.push_back(
+        {in.body_forces(k), wire::region_particles(regions, in.body_forces(k), here)});
+  }
   m.validate();
   return m;
 }

@@ -121,6 +121,25 @@ void print_health(std::FILE* out, const std::vector<fs::path>& runs, const nlohm
   }
 }
 
+/// run.json's body_forces (scene fluid.body_forces): per body the mean force and torque over
+/// the run's second half (else the last fluid stage's).
+void print_body_forces(std::FILE* out, const nlohmann::json& run) {
+  const auto it = run.find("body_forces");
+  if (it == run.end() || !it->is_object() || it->empty()) return;
+  std::fprintf(out, "  forces on bodies (body_forces.csv):\n");
+  for (const auto& [name, b] : it->items()) {
+    const bool mean = b.contains("mean_force");
+    const auto f = b.value(mean ? "mean_force" : "force", std::vector<double>(3, 0.0));
+    const auto tq = b.value(mean ? "mean_torque" : "torque", std::vector<double>(3, 0.0));
+    if (f.size() != 3 || tq.size() != 3) continue;
+    const std::string when = mean ? "mean over t = " + format_short(b.value("mean_from", 0.0)) +
+                                        "-" + format_short(b.value("mean_to", 0.0))
+                                  : "at t = " + format_short(b.value("time", 0.0));
+    std::fprintf(out, "    %s: F = (%.6g, %.6g, %.6g), T = (%.6g, %.6g, %.6g) (%s)\n", name.c_str(),
+                 f[0], f[1], f[2], tq[0], tq[1], tq[2], when.c_str());
+  }
+}
+
 }  // namespace
 
 void print_summary(const fs::path& dir, std::FILE* out) {
@@ -172,6 +191,7 @@ void print_summary(const fs::path& dir, std::FILE* out) {
                 first.value("plan", nlohmann::json::object()));
   print_stages(out, t);
   print_health(out, is_run ? std::vector<fs::path>{dir} : realizations, first);
+  if (is_run) print_body_forces(out, first);
   const fs::path run0 = is_run ? dir : realizations.front();
   const auto pvd = sorted_files(run0, ".pvd");
   const std::size_t frames = first.contains("frames") ? first["frames"].size() : 0;

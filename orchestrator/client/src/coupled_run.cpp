@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "sadr/common/log.hpp"
+#include "sadr/orchestrator/body_force_log.hpp"
 #include "sadr/orchestrator/checkpointing.hpp"
 #include "sadr/orchestrator/flow_replay.hpp"
 #include "sadr/orchestrator/frame_output.hpp"
@@ -82,6 +83,13 @@ class CoupledRun {
     hooks.checkpoint = [&] { result.last_checkpoint = checkpoint(); };
     hooks.stop_requested = [&] { return options_.interrupt && options_.interrupt->load(); };
     hooks.progress = [&](double t, std::uint64_t steps) { progress.update(t, steps); };
+    if (!scene_.fluid.body_forces.empty()) {  // body_forces.csv beside the frames
+      forces_.emplace(options_.output_dir, scene_.time.end, options_.resume ? loop_->time() : -1.0);
+      hooks.body_forces = [&](double t, double dt, const std::vector<BodyForceSample>& f) {
+        forces_->add(t, dt, f);
+        manifest_.body_forces = forces_->summary();
+      };
+    }
     result.interrupted = loop_->run(hooks);
     progress.finish(loop_->time(), loop_->steps());
     manifest_.status = result.interrupted ? "interrupted" : "ok";
@@ -174,7 +182,8 @@ class CoupledRun {
   std::optional<FlowReplay> replay_;  ///< instead of fluid_ (RunOptions::flow_replay)
   std::optional<SsaClient> ssa_;
   std::optional<FrameOutput> frames_;
-  std::optional<SplittingLoop> loop_;  ///< after the clients it calls: destroyed first
+  std::optional<BodyForceLog> forces_;  ///< scene fluid.body_forces
+  std::optional<SplittingLoop> loop_;   ///< after the clients it calls: destroyed first
 };
 
 }  // namespace

@@ -139,6 +139,10 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
   if (const WallTangents t = scene_wall_tangents(scene); !t.empty()) {
     wire::to_proto(t, *m->mutable_wall_tangents());
   }
+  for (const auto& body : f.body_forces) {  // fluid.body_forces: regions of wall particles
+    m->add_body_forces(body);
+    regions_used.insert(body);
+  }
   add_regions(scene, regions_used, m->mutable_regions());
   wire::to_proto(scene.particles, *init.mutable_particles(), /*with_velocities=*/true);
   return init;

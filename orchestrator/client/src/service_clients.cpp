@@ -97,6 +97,16 @@ FluidStep FluidClient::advance(std::uint64_t step_index, double dt, bool want_ge
     step.stable_time_step = rep.stable_time_step();
     step.limiting_criterion = rep.limiting_criterion();
   }
+  for (const auto& b : rep.body_forces()) {
+    BodyForceSample sample;
+    sample.name = b.name();
+    for (int a = 0; a < 3; ++a) {
+      sample.force[a] = a < b.force_size() ? b.force(a) : 0.0;
+      sample.torque[a] = a < b.torque_size() ? b.torque(a) : 0.0;
+      sample.reference[a] = a < b.reference_size() ? b.reference(a) : 0.0;
+    }
+    step.body_forces.push_back(std::move(sample));
+  }
   if (rep.geometry_generation() > 0) {
     step.geometry = Geometry::shared_memory(rep.geometry_generation());
   } else if (rep.has_particles()) {

@@ -141,6 +141,8 @@ Plan make_plan(const Scene& scene) {
   } else if (p.back_transfer) {
     p.flow_replay_reason =
         "back-transfer ssa -> fluid: the fluid reads " + join(p.back_transfer_species);
+  } else if (!scene.fluid.body_forces.empty()) {
+    p.flow_replay_reason = "fluid.body_forces: every realization writes its forces on bodies";
   } else {
     p.flow_replay_allowed = true;
     p.flow_replay_reason = "on only for an ensemble, sadr run -r R with R > 1";

@@ -44,31 +44,33 @@ RunManifest::RunManifest() : sadr_version(kBuildVersion), protocol_version(kProt
 }
 
 nlohmann::json RunManifest::to_json() const {
-  return {{"format", "sadr-run"},
-          {"format_version", 1},
-          {"scene_path", scene_path},
-          {"scene_hash", scene_hash},
-          {"overrides", overrides},
-          {"scene_seed", scene_seed},
-          {"realization", realization},
-          {"seed", seed},
-          {"sadr_version", sadr_version},
-          {"protocol_version", protocol_version},
-          {"mode", mode},
-          {"environment", environment},
-          {"started_utc", started_utc},
-          {"finished_utc", finished_utc},
-          {"status", status},
-          {"steps", steps},
-          {"overlapped_steps", overlapped_steps},
-          {"fluid_substeps", fluid_substeps},
-          {"fluid_at_t0", fluid_at_t0},
-          {"fluid_smallest_limit", fluid_smallest_limit},
-          {"ssa_events", ssa_events},
-          {"time", time},
-          {"timings_s", timings_s},
-          {"frames", frames},
-          {"plan", plan}};
+  nlohmann::json j = {{"format", "sadr-run"},
+                      {"format_version", 1},
+                      {"scene_path", scene_path},
+                      {"scene_hash", scene_hash},
+                      {"overrides", overrides},
+                      {"scene_seed", scene_seed},
+                      {"realization", realization},
+                      {"seed", seed},
+                      {"sadr_version", sadr_version},
+                      {"protocol_version", protocol_version},
+                      {"mode", mode},
+                      {"environment", environment},
+                      {"started_utc", started_utc},
+                      {"finished_utc", finished_utc},
+                      {"status", status},
+                      {"steps", steps},
+                      {"overlapped_steps", overlapped_steps},
+                      {"fluid_substeps", fluid_substeps},
+                      {"fluid_at_t0", fluid_at_t0},
+                      {"fluid_smallest_limit", fluid_smallest_limit},
+                      {"ssa_events", ssa_events},
+                      {"time", time},
+                      {"timings_s", timings_s},
+                      {"frames", frames},
+                      {"plan", plan}};
+  if (!body_forces.empty()) j["body_forces"] = body_forces;
+  return j;
 }
 
 void RunManifest::note_fluid_limit(double dt, const std::string& criterion, double at) {

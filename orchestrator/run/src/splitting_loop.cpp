@@ -148,6 +148,10 @@ bool SplittingLoop::run(const LoopHooks& hooks) {
                              !reaches_stop_at(cs->end) && !stop_requested() &&
                              next_coupling_step(cs->end, tau, t_end, outputs, ftf);
       step(*cs, defer_ssa);
+      for (const auto& sf : stage_forces_) {
+        if (hooks.body_forces) hooks.body_forces(sf.t, sf.dt, sf.forces);
+      }
+      stage_forces_.clear();
       if (cs->output) {
         drain();  // both services at the same time
         const auto it = std::lower_bound(outputs.begin(), outputs.end(), cs->end);
@@ -209,6 +213,9 @@ void SplittingLoop::step(const CouplingStep& cs, bool defer_ssa) {
       moved = rep.particles_moved || moved;
       geometry = std::move(rep.geometry);
       if (before_ssa) frozen = std::move(rep.concentrations);
+      if (!rep.body_forces.empty()) {
+        stage_forces_.push_back({stage.end, stage.length(), std::move(rep.body_forces)});
+      }
     } else {
       // The SSA stage of the previous step (overlapped with the fluid stage
       // just done) comes first: exposed time, the SSA not hidden by the fluid.

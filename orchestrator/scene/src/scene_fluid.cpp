@@ -17,11 +17,11 @@
 namespace sadr::orchestrator::detail {
 
 namespace {
-constexpr std::array<std::string_view, 17> kFluidKeys{
+constexpr std::array<std::string_view, 18> kFluidKeys{
     "backend",     "smoothing_length", "h_over_dx",       "kernel",     "reference_density",
     "sound_speed", "shear_viscosity",  "temperature",     "gravity",    "density_mode",
     "boussinesq",  "max_time_step",    "force_time_step", "parameters", "open_boundary",
-    "wall_model",  "wall_planes"};
+    "wall_model",  "wall_planes",      "body_forces"};
 constexpr std::array<std::string_view, 5> kPlaneKeys{"region", "point", "normal", "center",
                                                      "radius"};
 constexpr std::array<std::string_view, 8> kOpenKeys{

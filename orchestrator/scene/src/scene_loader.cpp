@@ -241,6 +241,7 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   }
   check_open_boundary(ctx);
   check_wall_planes(ctx, root);
+  check_body_forces(ctx, root);
   read_parameters(ctx, root);
   read_species(ctx, root);
   check_parameter_names(ctx, root);

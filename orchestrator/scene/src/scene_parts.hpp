@@ -66,6 +66,9 @@ void read_fluid(SceneContext& ctx, const Field& root);
 void check_open_boundary(SceneContext& ctx);
 /// fluid.wall_planes name regions of the scene (after read_regions).
 void check_wall_planes(SceneContext& ctx, const Field& root);
+/// fluid.body_forces (scene_body_forces.cpp): regions holding wall particles (after the
+/// particles and regions).
+void check_body_forces(SceneContext& ctx, const Field& root);
 void read_species(SceneContext& ctx, const Field& root);
 void read_reactions(SceneContext& ctx, const Field& root);
 /// A boundary flux's `surface: name` (and `group`, `region`; scene_flux_surfaces.cpp): sets the

@@ -62,6 +62,9 @@ struct FluidSettings {
   std::string wall_model = "stationary";     ///< one of the backend's wall models
   std::vector<WallPlane> wall_planes;        ///< wall_model "morris": one per wall region
   std::optional<OpenBoundarySettings> open_boundary;
+  /// Regions of wall particles whose hydrodynamic force and torque the fluid reports
+  /// (fluid.body_forces; sdpd), in scene order.
+  std::vector<std::string> body_forces;
 };
 
 }  // namespace sadr::model

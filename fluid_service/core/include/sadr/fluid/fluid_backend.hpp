@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -18,6 +19,14 @@
 namespace sadr::fluid {
 
 /// Health and progress of one advance() call.
+/// The force and torque the fluid exerted on one body over a step (FluidModel::body_forces).
+struct BodyForce {
+  std::string name;
+  std::array<double, 3> force{};      ///< [mass length/time^2] (per unit length^(3-d))
+  std::array<double, 3> torque{};     ///< about `reference` (2D: z only)
+  std::array<double, 3> reference{};  ///< [length]
+};
+
 struct StepReport {
   double time = 0.0;               ///< model time after the call [time]
   std::uint32_t substeps = 0;      ///< sub-steps taken
@@ -28,6 +37,8 @@ struct StepReport {
   double stable_dt = 0.0;          ///< smallest stability limit seen [time] (inf if none)
   std::string limiting_criterion;  ///< "acoustic" | "viscous" | "body_force" | "diffusion" |
                                    ///< "reaction" | "none"
+  /// FluidModel::body_forces in that order, averaged over the step (empty: none asked).
+  std::vector<BodyForce> body_forces;
   /// min_density / max_density from the densities of every particle (left 0 if none).
   void set_density_band(std::span<const double> rho) {
     if (rho.empty()) return;

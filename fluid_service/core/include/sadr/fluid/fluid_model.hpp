@@ -179,6 +179,13 @@ struct OpenBoundary {
   }
 };
 
+/// A body whose hydrodynamic force and torque the backend reports (fluid.body_forces): its wall
+/// particles (indices into the initial state; non-wall members are ignored).
+struct BodyForceGroup {
+  std::string name;
+  std::vector<std::uint32_t> particles;
+};
+
 /// The scene. validate() reports every problem at once.
 struct FluidModel {
   Box box{};
@@ -221,6 +228,8 @@ struct FluidModel {
   /// particle (common/wall_surface.hpp); then the regions' surfaces are not used. Empty: none.
   WallTangents wall_tangents;
   OpenBoundary open_boundary{};
+  /// Bodies whose force and torque every step reports (StepReport::body_forces); empty: none.
+  std::vector<BodyForceGroup> body_forces;
 
   /// Throws InvalidArgument naming every offending field with value and allowed range.
   void validate() const;

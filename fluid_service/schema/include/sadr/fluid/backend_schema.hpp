@@ -58,6 +58,9 @@ struct Capabilities {
   /// body's `motion`): the backend holds it and its wall models use it. Without it the scene
   /// loader refuses a moving wall (it would be held at rest).
   bool moving_walls = false;
+  /// Forces and torques on bodies (fluid.body_forces). Without it the scene loader and the
+  /// fluid core refuse the key.
+  bool body_forces = false;
 };
 
 /// Peak resident memory per particle with this backend (bench/memory_per_particle.py: the slope

@@ -69,6 +69,9 @@ struct RunManifest {
   std::map<std::string, double> timings_s;
   std::vector<std::string> frames;  ///< frame files written, in order
   nlohmann::json plan;              ///< Plan::to_json()
+  /// Forces on bodies (scene fluid.body_forces): BodyForceLog::summary(); left out of run.json
+  /// when empty.
+  nlohmann::json body_forces = nlohmann::json::object();
 
   RunManifest();
   [[nodiscard]] nlohmann::json to_json() const;

@@ -6,6 +6,7 @@
 /// unit tests implement them in-process (tests/orchestrator). No protobuf here.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -58,6 +59,13 @@ class Geometry {
   std::shared_ptr<common::v1::ParticleState> inline_;
 };
 
+/// The force and torque the fluid exerted on one body (scene fluid.body_forces), averaged over
+/// a fluid stage.
+struct BodyForceSample {
+  std::string name;
+  std::array<double, 3> force{}, torque{}, reference{};
+};
+
 /// What one fluid stage reports.
 struct FluidStep {
   double time = 0.0;  ///< simulated time after the stage [time]
@@ -71,6 +79,8 @@ struct FluidStep {
   Geometry geometry;  ///< when asked for (advance's want_geometry)
   /// advance's return_concentrations after the stage (hybrid reactions), in that order.
   SpeciesConcentrations concentrations;
+  /// fluid.body_forces in scene order (empty: none asked).
+  std::vector<BodyForceSample> body_forces;
 };
 
 /// The fluid state of a frame.

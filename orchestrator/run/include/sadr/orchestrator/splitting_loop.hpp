@@ -60,6 +60,9 @@ struct LoopHooks {
   std::function<bool()> stop_requested;
   /// After every step (progress display).
   std::function<void(double t, std::uint64_t steps)> progress;
+  /// After every coupling step, per fluid stage that reported forces on bodies: the stage's
+  /// end time t, its length dt and the forces (averaged over the stage).
+  std::function<void(double t, double dt, const std::vector<BodyForceSample>&)> body_forces;
 };
 
 class SplittingLoop {
@@ -103,6 +106,12 @@ class SplittingLoop {
   /// Copy numbers of s_.back_transfer after the last SSA stage (valid: has_counts_).
   SpeciesCounts counts_;
   bool has_counts_ = false;
+  /// The body forces of this step's fluid stages (end time, length, forces), for the hook.
+  struct StageForces {
+    double t = 0, dt = 0;
+    std::vector<BodyForceSample> forces;
+  };
+  std::vector<StageForces> stage_forces_;
   std::unique_ptr<SsaJob> pending_;  ///< an SSA stage running on worker_
   std::unique_ptr<Worker> worker_;   ///< declared last: joined first
 };
