@@ -185,6 +185,36 @@ class SdpdBackend final : public BackendBase {
     g.inv_r2 = 1.0 / r2;
     return true;
   }
+  /// The momentum pair force on the fluid particle i from j (any kind), added to `force`, with
+  /// the wall model of a wall j: Morris et al. 1997, beta (v_i - v_w) in the viscous term and v in
+  /// the pressure term; Adami et al. 2012, v_i minus the wall's extrapolated velocity (pd2_[j]
+  /// holds its extrapolated pressure); else v = v_i - v_j. Shared by the gather (sdpd_gather.cpp)
+  /// and the forces on bodies (sdpd_body_forces.cpp). Returns Morris' beta (1 otherwise), which
+  /// also scales Dirichlet species.
+  template <int D>
+  double fluid_pair_momentum(const Y& y, std::size_t i, std::uint32_t j, const PairGeometry<D>& g,
+                             const std::array<double, D>& v, const SdpdMomentumTerm& momentum,
+                             double h, std::array<double, D>& force) const {
+    const double inv_didj = inv_nd_[i] * inv_nd_[j];
+    if (morris_.enabled() && morris_.extrapolates(j)) {
+      const double beta = morris_.beta<D>(&y.x[3 * i], g.x.data(), j, h);
+      std::array<double, D> vb;
+      for (int a = 0; a < D; ++a) vb[a] = beta * v[a];
+      const SdpdMomentumTerm pressure_only{0.0};
+      pressure_only(g, pd2_[i], pd2_[j], inv_didj, v, force);
+      const SdpdMomentumTerm viscous_only{momentum.friction};
+      viscous_only(g, 0.0, 0.0, inv_didj, vb, force);
+      return beta;
+    }
+    if (adami_ && wall_[j]) {
+      std::array<double, D> va;
+      for (int a = 0; a < D; ++a) va[a] = y.v[3 * i + a] - adami_v_[3 * j + a];
+      momentum(g, pd2_[i], pd2_[j], inv_didj, va, force);
+      return 1.0;
+    }
+    momentum(g, pd2_[i], pd2_[j], inv_didj, v, force);
+    return 1.0;
+  }
   /// Transport velocity (sdpd_transport_velocity.cpp): out.shift and the A-tensor term of
   /// out.acc at the state y whose rates `out` holds (pd2_, vol_ of y), for a sub-step dt.
   void apply_transport_velocity(const Y& y, double dt, Rates& out);
@@ -368,12 +398,10 @@ inline void SdpdBackend::half_rates(std::size_t i, const Y& y, bool noise_on, do
 
 template <int D>
 SdpdPairParams SdpdBackend::make_pair_params(bool noise_on) const {
-  // a = b = c_D eta with c_D = 2(D+2)/(D+3): 5/3 in 3D (LAMMPS, Espanol-Revenga with zeta = 0),
-  // 8/5 in 2D, 3/2 in 1D, so that the continuum limit has shear viscosity eta in every dimension
-  // (see docs/fluid-core.md; LAMMPS' 5/3 in 2D gives 1.042 eta).
+  // a = b = c_D eta (sdpd::viscosity_factor; LAMMPS' 5/3 in 2D gives 1.042 eta)
   const double h = kernel_.support();
   const double h2 = h * h;
-  const double c_d = 2.0 * (D + 2) / (D + 3);
+  const double c_d = sdpd::viscosity_factor<D>();
   const SdpdMomentumTerm momentum{c_d * model_.shear_viscosity};
   const ContinuityTerm continuity{model_.density_diffusion * h * model_.sound_speed, 0.01 * h2};
   SdpdPairParams pp;

@@ -64,9 +64,7 @@ void SdpdBackend::setup_bodies() {
 template <int D>
 void SdpdBackend::body_forces_at(const Y& y, Rates& out) const {
   const double h = kernel_.support();
-  const double c_d = 2.0 * (D + 2) / (D + 3);  // see make_pair_params
-  const SdpdMomentumTerm momentum{c_d * model_.shear_viscosity};
-  const SdpdMomentumTerm pressure_only{0.0};
+  const SdpdMomentumTerm momentum{sdpd::viscosity_factor<D>() * model_.shear_viscosity};
   const double* x = y.x.data();
   out.body.assign(6 * bodies_.walls.size(), 0.0);
   for (std::size_t b = 0; b < bodies_.walls.size(); ++b) {
@@ -77,24 +75,9 @@ void SdpdBackend::body_forces_at(const Y& y, Rates& out) const {
       for (const std::uint32_t f : nlist_.of(w)) {
         if (wall_[f] || (open_.enabled() && open_.buffer(f))) continue;
         if (!pair_geometry<D>(x, f, w, g)) continue;  // x_fw = x_f - x_w
-        const double* vf = &y.v[3 * f];
         std::array<double, D> v;
-        for (int a = 0; a < D; ++a) v[a] = vf[a] - y.v[3 * w + a];
-        const double inv_didj = inv_nd_[f] * inv_nd_[w];
-        if (morris_.enabled() && morris_.extrapolates(w)) {
-          const double beta = morris_.beta<D>(&x[3 * f], g.x.data(), w, h);
-          std::array<double, D> vb;
-          for (int a = 0; a < D; ++a) vb[a] = beta * v[a];  // beta (v_f - v_w), as the gather
-          pressure_only(g, pd2_[f], pd2_[w], inv_didj, v, on_fluid);
-          const SdpdMomentumTerm viscous_only{momentum.friction};
-          viscous_only(g, 0.0, 0.0, inv_didj, vb, on_fluid);
-        } else if (adami_) {
-          std::array<double, D> va;
-          for (int a = 0; a < D; ++a) va[a] = vf[a] - adami_v_[3 * w + a];
-          momentum(g, pd2_[f], pd2_[w], inv_didj, va, on_fluid);
-        } else {
-          momentum(g, pd2_[f], pd2_[w], inv_didj, v, on_fluid);
-        }
+        for (int a = 0; a < D; ++a) v[a] = y.v[3 * f + a] - y.v[3 * w + a];
+        fluid_pair_momentum<D>(y, f, w, g, v, momentum, h, on_fluid);  // as the gather
       }
       double r[3] = {x[3 * w] - bodies_.reference[b][0], x[3 * w + 1] - bodies_.reference[b][1],
                      x[3 * w + 2] - bodies_.reference[b][2]};

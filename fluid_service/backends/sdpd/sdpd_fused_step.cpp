@@ -39,7 +39,7 @@ double SdpdBackend::fused_substep(std::uint64_t step_index, std::uint64_t key, d
   ytmp_.v.resize(3 * n);
   ytmp_.rho.resize(n);
   const SdpdPairParams pp0 = make_pair_params<D>(noise_on), pp1 = make_pair_params<D>(false);
-  const double c_d = 2.0 * (D + 2) / (D + 3);
+  const double c_d = sdpd::viscosity_factor<D>();
   const double stable0 = rep.stable_dt;
   const std::string criterion0 = rep.limiting_criterion;
   int moved = 0;

@@ -84,7 +84,7 @@ void SdpdBackend::evaluate_gather(Y& y, std::uint64_t noise_step, Rates& out, bo
   }
   if (adami_) adami_wall_values<D>(y);  // wall pressure and velocity from this fluid state
   // c_D: see make_pair_params
-  const double c_d = 2.0 * (D + 2) / (D + 3);
+  const double c_d = sdpd::viscosity_factor<D>();
   const GatherTerms t{h,
                       h2,
                       summation,
@@ -198,27 +198,9 @@ void SdpdBackend::gather_pairs(std::size_t i, const Y& y, const GatherTerms& t, 
       }
       continue;
     }
-    // Morris et al. 1997 extrapolated wall values: v_ij = beta (v_i - v_w) in the viscous term
-    // (v_w the wall particle's prescribed velocity, v = v_i - v_j), and beta (C_w - C_i) for
-    // Dirichlet species (the held value on the wall surface).
-    double beta = 1.0;
-    if (morris_.enabled() && morris_.extrapolates(j)) {
-      beta = morris_.beta<D>(&x[3 * i], g.x.data(), j, t.h);
-      std::array<double, D> vb;
-      for (int a = 0; a < D; ++a) vb[a] = beta * v[a];
-      const SdpdMomentumTerm pressure_only{0.0};
-      pressure_only(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], v, s.force);
-      const SdpdMomentumTerm viscous_only{t.momentum.friction};
-      viscous_only(g, 0.0, 0.0, inv_nd_[i] * inv_nd_[j], vb, s.force);
-    } else if (adami_ && wall_[j]) {
-      // Adami et al. 2012: the wall's extrapolated velocity in the viscous term (pd2_[j] holds
-      // its extrapolated pressure; the continuity term above keeps the wall's v = 0)
-      std::array<double, D> va;
-      for (int a = 0; a < D; ++a) va[a] = vi[a] - adami_v_[3 * j + a];
-      t.momentum(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], va, s.force);
-    } else {
-      t.momentum(g, pd2_[i], pd2_[j], inv_nd_[i] * inv_nd_[j], v, s.force);
-    }
+    // the wall model's pair term (fluid_pair_momentum); Morris' beta also scales Dirichlet
+    // species, beta (C_w - C_i), the held value on the wall surface
+    const double beta = fluid_pair_momentum<D>(y, i, j, g, v, t.momentum, t.h, s.force);
     s.f_sum += g.f * inv_nd_[j];
     if (t.noise_on) {
       // force_i = sign sqrt(amp2/2) (z0, z1, z2) + sqrt(amp2/2)/r x_ij z3 (PairNoise::add)

@@ -288,7 +288,7 @@ void SdpdBackend::evaluate_half(Y& y, std::uint64_t noise_step, Rates& out, bool
     hacc_[i] = HalfAcc{};
   }
   const SdpdPairParams pp = make_pair_params<D>(noise_on);
-  const double c_d = 2.0 * (D + 2) / (D + 3);
+  const double c_d = sdpd::viscosity_factor<D>();
   ensure_scratch();
   slabs_.next_pass();
 #pragma omp parallel if (ni > kMinParallel)

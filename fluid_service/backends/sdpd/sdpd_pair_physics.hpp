@@ -76,6 +76,14 @@ inline double a_tensor_component(double half_vf, double vi, double rho_sx_i, dou
   return -half_vf * (vi * rho_sx_i + vj * rho_sx_j);
 }
 
+/// c_D of the viscous term, a = b = c_D eta: 2 (D + 2) / (D + 3), 5/3 in 3D (LAMMPS,
+/// Espanol-Revenga with zeta = 0), 8/5 in 2D, 3/2 in 1D, so that the continuum limit has shear
+/// viscosity eta in every dimension (docs/fluid-core.md).
+template <int D>
+constexpr double viscosity_factor() {
+  return 2.0 * (D + 2) / (D + 3);
+}
+
 /// Adami, Hu & Adams (2012) generalized wall (sdpd_adami_walls.cpp): the pair's terms of the
 /// sums of wall particle w over its fluid neighbours f, with W_wf the kernel weight and x_wf =
 /// x_w - x_f: the weight W_wf, p_f W_wf, v_f W_wf and rho_f (b . x_wf) W_wf with b = g - a_w the
