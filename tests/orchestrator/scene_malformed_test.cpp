@@ -254,7 +254,8 @@ const std::vector<MalformedCase>& cases() {
       {"sdpd_needs_sound_speed",
        "  backend: static\n",
        "  backend: sdpd\n",
-       {"scene.yaml:13:3: fluid.sound_speed: missing; required: a number > 0 [length/time]",
+       {"scene.yaml:13:3: fluid.sound_speed: missing, and nothing in the scene sets a flow speed "
+        "or a pressure variation to choose it from",
         "fluid.shear_viscosity: missing"}},
       {"periodic_axis_spacing_mismatch",
        "  upper: [1.0]\n",

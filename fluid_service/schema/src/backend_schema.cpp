@@ -99,6 +99,16 @@ std::string markdown_parameters(const Backend& b) {
   return s;
 }
 
+/// The required keys; sound_speed is chosen from the scene when left out.
+std::string required_text(const Backend& b) {
+  std::string s = join(b.required);
+  const std::string key = "sound_speed";
+  if (const auto at = s.find(key); at != std::string::npos) {
+    s.insert(at + key.size(), " (chosen when left out)");
+  }
+  return s;
+}
+
 std::string markdown_capabilities() {
   std::string s =
       "| backend | moves particles | transports species | thermal noise | open boundaries | "
@@ -109,7 +119,7 @@ std::string markdown_capabilities() {
     s += "| `" + b.name + "` | " + yes(c.moves_particles) + " | " + yes(c.transports_species) +
          " | " + yes(c.thermal_noise) + " | " + yes(c.open_boundaries) + " | " +
          yes(c.wall_species_terms) + " | " + yes(c.boundary_fluxes) + " | " + join(c.wall_models) +
-         " | " + join(c.kernels) + " | " + join(b.required) + " |\n";
+         " | " + join(c.kernels) + " | " + required_text(b) + " |\n";
   }
   return s;
 }
@@ -126,7 +136,7 @@ std::string describe() {
          ", wall species terms: " + yes(c.wall_species_terms) +
          ", boundary fluxes: " + yes(c.boundary_fluxes) + "\n";
     s += "  wall models: " + join(c.wall_models) + "; kernels: " + join(c.kernels) +
-         "; requires: " + join(b.required) + "\n";
+         "; requires: " + required_text(b) + "\n";
     s += "  parameters (fluid.parameters):" + std::string(b.parameters.empty() ? " none\n" : "\n");
     for (const auto& p : b.parameters) {
       s += "    " + p.name + " [" + p.unit + "] default " + default_text(p) + ", " + range(p) +

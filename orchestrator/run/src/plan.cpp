@@ -20,6 +20,7 @@ std::string join(const std::vector<std::string>& v) {
 
 Plan make_plan(const Scene& scene) {
   Plan p;
+  p.chosen = scene.chosen;
   // What the backend does, from its schema entry (no backend name is spelled here; the scene
   // loader refused unknown names, a hand-made Scene with one is taken as moving particles).
   const auto* backend = sadr::fluid::schema::find(scene.fluid.backend);
@@ -223,6 +224,7 @@ std::vector<std::string> Plan::lines() const {
                 " (" + overlap_reason + ")");
   out.push_back(std::string("flow replay: ") + (flow_replay ? "on" : "off") + " (" +
                 flow_replay_reason + ")");
+  for (const auto& s : chosen) out.push_back("chosen: " + s);
   for (const auto& s : skipped) out.push_back("skipped: " + s);
   return out;
 }
@@ -254,6 +256,7 @@ nlohmann::json Plan::to_json() const {
   };
   if (!frozen_species.empty()) j["frozen_species"] = frozen_species;  // hybrid scenes only
   if (ssa_time_laws) j["ssa_time_laws"] = true;
+  if (!chosen.empty()) j["chosen"] = chosen;  // scenes that leave out the sound speed only
   return j;
 }
 

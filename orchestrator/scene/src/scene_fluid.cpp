@@ -409,9 +409,7 @@ void read_fluid(SceneContext& ctx, const Field& root) {
   }
   fl.reference_density =
       r.number_or(f, "reference_density", 1.0, Bound::kPositive, "mass/length^d");
-  fl.sound_speed =
-      r.number(f, "sound_speed", Bound::kPositive, "length/time", required("sound_speed"))
-          .value_or(0);
+  fl.sound_speed = r.number(f, "sound_speed", Bound::kPositive, "length/time", false).value_or(0);
   fl.shear_viscosity = r.number(f, "shear_viscosity", Bound::kNonNegative,
                                 "mass/(length^(d-2) time)", required("shear_viscosity"))
                            .value_or(0);

@@ -242,6 +242,11 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& source_nam
   check_open_boundary(ctx);
   check_wall_planes(ctx, root);
   check_body_forces(ctx, root);
+  {
+    const Field fl = YamlReader::child(root, "fluid");
+    choose_flow_settings(ctx, root, YamlReader::present(YamlReader::child(fl, "sound_speed")),
+                         YamlReader::present(YamlReader::child(fl, "reference_density")));
+  }
   read_parameters(ctx, root);
   read_species(ctx, root);
   check_parameter_names(ctx, root);

@@ -62,6 +62,12 @@ void read_particles(SceneContext& ctx, const Field& root);
 /// Top-level "geometry" (scene_geometry.cpp), instead of read_particles: particles from bodies.
 void read_geometry(SceneContext& ctx, const Field& root);
 void read_fluid(SceneContext& ctx, const Field& root);
+/// Once the particles exist (scene_flow_scales.cpp): the sound speed a scene leaves out, and a
+/// background pressure around a body in the flow, chosen from the flow's expected speed and
+/// pressure variation (Scene::chosen says what and why); warnings where given values break the
+/// rules. Backends without an equation of state: nothing.
+void choose_flow_settings(SceneContext& ctx, const Field& root, bool sound_speed_given,
+                          bool reference_density_given);
 /// fluid.open_boundary against h and the particles (after read_particles).
 void check_open_boundary(SceneContext& ctx);
 /// fluid.wall_planes name regions of the scene (after read_regions).

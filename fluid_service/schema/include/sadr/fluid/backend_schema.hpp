@@ -81,7 +81,8 @@ struct Backend {
   std::string name;
   std::string summary;  ///< one line
   Capabilities capabilities;
-  /// Scene keys of `fluid:` this backend needs (e.g. sound_speed).
+  /// Scene keys of `fluid:` this backend needs (e.g. sound_speed). The scene loader chooses
+  /// `sound_speed` from the flow when a scene leaves it out (docs/scene-format.md).
   std::vector<std::string> required;
   std::vector<Parameter> parameters;
   MemoryPerParticle memory{};

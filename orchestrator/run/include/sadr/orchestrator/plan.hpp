@@ -54,6 +54,7 @@ struct Plan {
   std::size_t fluid_reactions = 0;   ///< reactions among deterministic species
   std::size_t ssa_reactions = 0;     ///< reactions among stochastic species
   std::vector<std::string> skipped;  ///< one line per skipped piece, with the reason
+  std::vector<std::string> chosen;   ///< settings chosen for keys left out (Scene::chosen)
   /// The scene allows running the SSA stage of step k at the same time as the
   /// fluid stage of step k + 1: Lie splitting, both services, fluid stepping,
   /// no back-transfer (the fluid never reads the SSA, so results are identical).

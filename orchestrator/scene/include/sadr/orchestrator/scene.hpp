@@ -146,6 +146,9 @@ struct Scene {
   /// in file order): a term that selects no particle, molecules that never reach the fluid.
   /// Not part of the scene's meaning (nor of its hash); `sadr validate --strict` refuses them.
   std::vector<std::string> warnings;
+  /// Settings the loader chose for keys the scene leaves out (the sound speed, a background
+  /// pressure), each with its reason; the plan prints them.
+  std::vector<std::string> chosen;
   /// Set when the particles came from the `geometry` section (shared: scenes are copied).
   std::shared_ptr<const GeometryReport> geometry;
 
