@@ -51,7 +51,7 @@ std::vector<std::string> describe_scene(const Scene& s) {
                   std::to_string(r.particles.size()) + " particles");
   }
   const auto* backend = sadr::fluid::schema::find(s.fluid.backend);  // c0, eta if it needs them
-  const bool sph = backend && backend->needs("sound_speed");  // chosen when left out
+  const bool sph = backend && backend->needs("sound_speed");         // chosen when left out
   out.push_back("fluid: " + s.fluid.backend +
                 ", rho0 = " + format_number(s.fluid.reference_density) +
                 (sph ? ", c0 = " + format_number(s.fluid.sound_speed) +
