@@ -50,6 +50,26 @@ class Run:
         """Wall seconds per stage from run.json (``timings_s``)."""
         return dict(self.manifest.get("timings_s", {}))
 
+    def body_forces(self, body: str | None = None) -> pd.DataFrame:
+        """The force and torque the fluid exerts on each body (``body_forces.csv``, written
+        when the scene lists ``fluid.body_forces``): columns t, dt, body, Fx, Fy, Fz, Tx, Ty,
+        Tz, one row per fluid stage and body, in file order; ``body`` keeps one body's rows."""
+        import pandas as pd
+
+        path = self.path / "body_forces.csv"
+        if not path.is_file():
+            raise FileNotFoundError(f"{path}: no such file (the scene lists no fluid.body_forces)")
+        table = pd.read_csv(path, dtype={"body": str}, float_precision="round_trip")
+        expected = ["t", "dt", "body", "Fx", "Fy", "Fz", "Tx", "Ty", "Tz"]
+        if list(table.columns) != expected:
+            raise ValueError(f"{path}: columns {list(table.columns)}, expected {expected}")
+        if body is None:
+            return table
+        names = list(dict.fromkeys(table["body"]))
+        if body not in names:
+            raise KeyError(f"{path}: no body '{body}' (bodies: {', '.join(names)})")
+        return table[table["body"] == body].reset_index(drop=True)
+
     @cached_property
     def files(self) -> list:
         """Per output index, a dict {'csv'|'vtu'|'vtp': Path}, in index order."""
