@@ -26,8 +26,10 @@ CPU time of one thread (OMP_NUM_THREADS=1), on the same workloads:
 LAMMPS CPU time is its loop time x its reported CPU use; ours is the benchmarks' own CPU time
 of the timed loop; URDME's driver reports process CPU of the nsm() call minus an init-only call.
 
---memory: process peak RSS (ru_maxrss of the reaped process) at two sizes per case; the slope
-is bytes per particle / per voxel (the binary and libraries drop out). Not load-sensitive.
+--memory: process peak RSS at two sizes per case, each command's own (run under GNU time:
+ru_maxrss of a process forked from this script never reads below the script's own peak, which
+flattened a small peer's slope); the slope is bytes per particle / per voxel (the binary and
+libraries drop out). Not load-sensitive. --only selects the cases here too.
 Cases: SDPD 3D / 2D (fluid_bench --case, 2 steps), tDPD 1 species (fluid_tdpd_bench --species 1
 --quick, 10648 and 97336 particles; LAMMPS the tdpd deck, 2 + 5 steps), NSM (ssa_bench a).
 
@@ -109,13 +111,14 @@ run {steps}
 """
 
 
-def lammps_rate(lmp, deck_text, work, tag):
+def lammps_rate(lmp, deck_text, work, tag, own_peak=False):
     """Runs one LAMMPS deck; returns particle-steps per CPU-second of the last run and the
     process record (peak RSS)."""
     deck = work / f"{tag}.in"
     log = work / f"{tag}.log"
     deck.write_text(deck_text)
-    r = run_measured([lmp, "-in", deck, "-log", log, "-screen", "none"], cwd=work)
+    r = run_measured([lmp, "-in", deck, "-log", log, "-screen", "none"], cwd=work,
+                     own_peak=own_peak)
     if r["rc"]:
         sys.exit(f"LAMMPS failed (exit {r['rc']}) on {deck}; see {log}")
     text = log.read_text()
@@ -221,26 +224,30 @@ def memory(a, work):
         def f(side):
             n = side ** dim
             r = run_measured([a.build / "bench/fluid/fluid_bench", "--case", dim, n, 1, 2],
-                             env=env1())
+                             env=env1(), own_peak=True)
             return n, r["maxrss_kib"]
         return f
 
     def peer_fluid(dim):
         def f(side):
-            _, atoms, r = lammps_rate(a.lammps, sdpd_deck(dim, side, 2), work, f"mem{dim}_{side}")
+            _, atoms, r = lammps_rate(a.lammps, sdpd_deck(dim, side, 2), work, f"mem{dim}_{side}",
+                                      own_peak=True)
             return atoms, r["maxrss_kib"]
         return f
 
     def ours_ssa(side):
         r = run_measured([a.build / "bench/ssa/ssa_bench", "a", "--n", side, "--events", "1e5",
-                          "--baseline-events", 0], env=env1())
+                          "--baseline-events", 0], env=env1(), own_peak=True)
         return side ** 3, r["maxrss_kib"]
 
     def peer_ssa(side):
-        r = run_measured([a.urdme, side, 3 * side ** 3, 0, "1e5", 1])
+        r = run_measured([a.urdme, side, 3 * side ** 3, 0, "1e5", 1], own_peak=True)
         return side ** 3, r["maxrss_kib"]
 
+    only = set(a.only.split(","))
     for name, dim, sizes in (("SDPD 3D", 3, (22, 46)), ("SDPD 2D", 2, (100, 316))):
+        if "sdpd" not in only:
+            break
         o = slope(ours_fluid(dim), sizes)
         p = slope(peer_fluid(dim), sizes)
         out.append({"case": f"{name}, bytes per particle (h = 3 dx)", "ours": o[0], "peer": p[0],
@@ -250,26 +257,29 @@ def memory(a, work):
     def ours_tdpd(side):
         size = "--small" if side == 22 else "--large"
         r = run_measured([a.build / "bench/fluid_tdpd/fluid_tdpd_bench", work / "tdpd_mem.json",
-                          "--quick", size, "--species", 1, "--steps", 2], env=env1())
+                          "--quick", size, "--species", 1, "--steps", 2], env=env1(), own_peak=True)
         return side ** 3, r["maxrss_kib"]
 
     def peer_tdpd(side):
         deck = TDPD_DECK.format(n=side, warmup=2, steps=5)
-        _, atoms, r = lammps_rate(a.lammps, deck, work, f"memtdpd_{side}")
+        _, atoms, r = lammps_rate(a.lammps, deck, work, f"memtdpd_{side}", own_peak=True)
         return atoms, r["maxrss_kib"]
 
-    o = slope(ours_tdpd, (22, 46))
-    p = slope(peer_tdpd, (22, 46))
-    out.append({"case": "tDPD 1 species, bytes per particle (rho = 4, r_c = 1.58)", "ours": o[0],
-                "peer": p[0], "peer_name": "LAMMPS", "sizes": [o[3], o[4]],
-                "ours_peak_kib": [o[1], o[2]], "peer_peak_kib": [p[1], p[2]]})
-    print(f"  memory tDPD: ours {o[0]:.0f} B/particle, LAMMPS {p[0]:.0f}", flush=True)
-    o = slope(ours_ssa, (32, 64))
-    p = slope(peer_ssa, (32, 64))
-    out.append({"case": "NSM, bytes per voxel (case (a) lattice, 32^3 -> 64^3, 3 molecules/voxel)",
-                "ours": o[0], "peer": p[0], "peer_name": "URDME", "sizes": [o[3], o[4]],
-                "ours_peak_kib": [o[1], o[2]], "peer_peak_kib": [p[1], p[2]]})
-    print(f"  memory NSM: ours {o[0]:.0f} B/voxel, URDME {p[0]:.0f}", flush=True)
+    if "tdpd" in only:
+        o = slope(ours_tdpd, (22, 46))
+        p = slope(peer_tdpd, (22, 46))
+        out.append({"case": "tDPD 1 species, bytes per particle (rho = 4, r_c = 1.58)",
+                    "ours": o[0], "peer": p[0], "peer_name": "LAMMPS", "sizes": [o[3], o[4]],
+                    "ours_peak_kib": [o[1], o[2]], "peer_peak_kib": [p[1], p[2]]})
+        print(f"  memory tDPD: ours {o[0]:.0f} B/particle, LAMMPS {p[0]:.0f}", flush=True)
+    if "nsm" in only:
+        o = slope(ours_ssa, (32, 64))
+        p = slope(peer_ssa, (32, 64))
+        out.append({"case": "NSM, bytes per voxel (case (a) lattice, 32^3 -> 64^3, "
+                            "3 molecules/voxel)",
+                    "ours": o[0], "peer": p[0], "peer_name": "URDME", "sizes": [o[3], o[4]],
+                    "ours_peak_kib": [o[1], o[2]], "peer_peak_kib": [p[1], p[2]]})
+        print(f"  memory NSM: ours {o[0]:.0f} B/voxel, URDME {p[0]:.0f}", flush=True)
     return out
 
 

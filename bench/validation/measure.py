@@ -9,6 +9,7 @@ On a shared machine wall time depends on the other users; CPU time much less
 import os
 import pathlib
 import subprocess
+import tempfile
 import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -26,23 +27,44 @@ def commit() -> str:
         return "unknown"
 
 
-def run_measured(cmd, cwd=None, env=None, log=None) -> dict:
+GNU_TIME = "/usr/bin/time"
+
+
+def run_measured(cmd, cwd=None, env=None, log=None, own_peak=False) -> dict:
     """Runs cmd; returns wall, user, sys, cpu [s], peak RSS [KiB] of the process
     tree that was reaped (ru_maxrss of the largest), and the exit code.
-    stdout/stderr go to `log` (a path) or are discarded."""
+    stdout/stderr go to `log` (a path) or are discarded.
+
+    A process forked from Python starts with Python's own peak RSS as its
+    ru_maxrss (Linux carries the forked image's high-water mark across exec), so
+    a small command never reads below this script's size. own_peak=True runs
+    the command under GNU time (Debian package `time`), whose child is forked
+    from a ~2 MB process, and reports that child's peak instead."""
+    argv = [str(c) for c in cmd]
+    peak_file = None
+    if own_peak:
+        if not os.access(GNU_TIME, os.X_OK):
+            raise RuntimeError(f"{GNU_TIME} not found: install Debian's `time` package")
+        fd, peak_file = tempfile.mkstemp(prefix="sadr-peak-")
+        os.close(fd)
+        argv = [GNU_TIME, "-f", "%M", "-o", peak_file] + argv
     out = open(log, "w") if log else subprocess.DEVNULL
     try:
         t0 = time.perf_counter()
-        p = subprocess.Popen([str(c) for c in cmd], cwd=cwd, env=env, stdout=out,
-                             stderr=subprocess.STDOUT)
+        p = subprocess.Popen(argv, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT)
         _, status, ru = os.wait4(p.pid, 0)
         wall = time.perf_counter() - t0
         p.returncode = os.waitstatus_to_exitcode(status)
     finally:
         if log:
             out.close()
+    peak = ru.ru_maxrss
+    if peak_file:
+        lines = pathlib.Path(peak_file).read_text().split()
+        os.unlink(peak_file)
+        peak = int(lines[-1])  # after "Command exited with non-zero status N", if any
     return {"wall_s": wall, "user_s": ru.ru_utime, "sys_s": ru.ru_stime,
-            "cpu_s": ru.ru_utime + ru.ru_stime, "maxrss_kib": ru.ru_maxrss, "rc": p.returncode,
+            "cpu_s": ru.ru_utime + ru.ru_stime, "maxrss_kib": peak, "rc": p.returncode,
             "cmd": " ".join(str(c) for c in cmd)}
 
 
