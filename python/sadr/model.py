@@ -268,12 +268,16 @@ class Initial(_Part):
 @dataclass
 class Boundary(_Part):
     """A species' condition on a region's non-fluid particles: ``dirichlet``,
-    ``neumann``, ``none``, ``free`` or ``inflow``, with ``value`` or ``count``."""
+    ``neumann``, ``none``, ``free`` or ``inflow``, with ``value`` or ``count``.
+    Instead of ``region``: ``surface``, the wall particles behind a fluid or solid body's
+    surface, and with ``group`` only those behind one physical group of its mesh file."""
 
     region: str | None = None
     condition: str | None = None
     value: Number | None = None
     count: Number | None = None
+    surface: str | None = None
+    group: str | None = None
     extra: dict = field(default_factory=dict)
 
 

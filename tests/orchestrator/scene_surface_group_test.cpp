@@ -7,9 +7,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numeric>
 #include <string>
 
@@ -262,6 +265,185 @@ TEST(SurfaceGroupFlux, AGroupWithNoFluidNextToItIsRefused) {
       channel_error(dir, replace_once(covered, "group: inlet,", "group: outlet,"));
   EXPECT_NE(msg.find("scene.yaml:12:52: boundary_fluxes[0].group: boundary flux 'feed' on group "
                      "'outlet' of 'duct': no fluid particle lies next to the surface's part"),
+            std::string::npos)
+      << msg;
+}
+
+// Species `boundaries` with `surface` and `group`: the wall particles behind one physical group.
+const std::string kWalled =
+    "dimension: 2\n"                                                             // 1
+    "box: {lower: [-0.5, -0.5], upper: [2.5, 1.7]}\n"                            // 2
+    "geometry:\n"                                                                // 3
+    "  spacing: 0.05\n"                                                          // 4
+    "  bodies:\n"                                                                // 5
+    "    - {name: duct, role: fluid, shape: {type: mesh, file: channel.msh}}\n"  // 6
+    "fluid: {backend: static, h_over_dx: 2.0}\n"                                 // 7
+    "species:\n"                                                                 // 8
+    "  - name: A\n"                                                              // 9
+    "    stochastic: false\n"                                                    // 10
+    "    diffusivity: 0.1\n"                                                     // 11
+    "    boundaries:\n"                                                          // 12
+    "      - {surface: duct, group: inlet, condition: dirichlet, value: 1}\n"    // 13
+    "      - {surface: duct, group: outlet, condition: dirichlet, value: 0}\n"   // 14
+    "time: {coupling_step: 0.1, end: 1.0}\n";                                    // 15
+
+/// Distance from p to the segment a-b (2D).
+double to_segment(double px, double py, double ax, double ay, double bx, double by) {
+  const double ux = bx - ax, uy = by - ay;
+  const double t = std::clamp(((px - ax) * ux + (py - ay) * uy) / (ux * ux + uy * uy), 0.0, 1.0);
+  return std::hypot(px - ax - t * ux, py - ay - t * uy);
+}
+
+/// The channel's groups measured from p: inlet, outlet, walls (bottom and top).
+std::array<double, 3> group_distances(double x, double y) {
+  return {to_segment(x, y, 0, 0, 0, 1.2), to_segment(x, y, 2, 0, 2, 1),
+          std::min(to_segment(x, y, 0, 0, 2, 0), to_segment(x, y, 2, 1, 0, 1.2))};
+}
+
+std::vector<std::uint32_t> region_particles(const Scene& s, const std::string& name) {
+  const Region* r = s.find_region(name);
+  return r ? r->particles : std::vector<std::uint32_t>{};
+}
+
+TEST(SurfaceGroupBoundary, EachGroupHoldsExactlyTheWallsBehindIt) {
+  GroupDir dir;
+  const std::string text = replace_once(
+      kWalled, "time:",
+      "  - name: B\n"
+      "    diffusivity: 0.1\n"
+      "    boundaries: [{surface: duct, group: walls, condition: dirichlet, value: 2}]\n"
+      "  - name: W\n"
+      "    diffusivity: 0.1\n"
+      "    boundaries: [{surface: duct, condition: dirichlet, value: 3}]\n"
+      "time:");
+  const Scene s = channel(dir, text);
+  ASSERT_EQ(s.species.size(), 3U);
+  ASSERT_EQ(s.species[0].boundaries.size(), 2U);
+  EXPECT_EQ(s.species[0].boundaries[0].region, "duct/inlet");
+  EXPECT_EQ(s.species[0].boundaries[1].region, "duct/outlet");
+  EXPECT_EQ(s.species[1].boundaries[0].region, "duct/walls");
+  EXPECT_EQ(s.species[2].boundaries[0].region, "duct/surface");
+  const auto inlet = region_particles(s, "duct/inlet");
+  const auto outlet = region_particles(s, "duct/outlet");
+  const auto walls = region_particles(s, "duct/walls");
+  const auto whole = region_particles(s, "duct/surface");
+  // Independently: every wall particle, and the groups it is no farther from than from the rest.
+  const ParticleState& p = s.particles;
+  std::array<std::vector<std::uint32_t>, 3> expected;
+  std::vector<std::uint32_t> all_walls;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind(i) != ParticleKind::kWall) continue;
+    all_walls.push_back(static_cast<std::uint32_t>(i));
+    const auto d = group_distances(p.positions[3 * i], p.positions[3 * i + 1]);
+    const double nearest = std::min({d[0], d[1], d[2]});
+    for (std::size_t g = 0; g < 3; ++g) {
+      if (d[g] <= nearest + 1e-9) expected[g].push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  EXPECT_EQ(inlet, expected[0]);
+  EXPECT_EQ(outlet, expected[1]);
+  EXPECT_EQ(walls, expected[2]);
+  EXPECT_EQ(whole, all_walls);  // the walls behind the whole surface: every wall layer
+  // Behind the inlet (x < 0, two wall layers at x = -0.025 and -0.075): its 24 rows of sites in
+  // 0 < y < 1.2, and the corner sites as near to the inlet as to the walls, behind both.
+  std::size_t rows = 0, corner = 0;
+  for (const auto i : inlet) {
+    const double x = p.positions[3 * i], y = p.positions[3 * i + 1];
+    EXPECT_LT(x, 0.0) << i;
+    EXPECT_GT(x, -0.1) << i;
+    const bool in_extent = y > 0.0 && y < 1.2;
+    rows += in_extent;
+    const bool shared = std::binary_search(walls.begin(), walls.end(), i);
+    EXPECT_EQ(shared, !in_extent) << x << " " << y;
+    corner += shared;
+  }
+  EXPECT_EQ(rows, 48U);
+  EXPECT_EQ(corner, 2U);  // (-0.025, -0.025) and (-0.025, 1.225)
+  EXPECT_EQ(inlet.size(), 50U);
+  for (const auto i : outlet) {
+    EXPECT_GT(p.positions[3 * i], 2.0) << i;
+    EXPECT_FALSE(std::binary_search(inlet.begin(), inlet.end(), i)) << i;
+  }
+  std::printf("walls behind inlet %zu (%zu at the corners), outlet %zu, walls %zu, whole %zu\n",
+              inlet.size(), corner, outlet.size(), walls.size(), whole.size());
+  // The Dirichlet values start on those walls only.
+  const auto& a = s.species[0].initial;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const bool in_inlet = std::binary_search(inlet.begin(), inlet.end(), i);
+    EXPECT_EQ(a[i], in_inlet ? 1.0 : 0.0) << i;
+  }
+}
+
+TEST(SurfaceGroupBoundary, ACornerWallStaysWithTheFirstGroupListed) {
+  GroupDir dir;
+  // The inlet held at 1, the walls with an inward flux: the corner sites behind both keep the
+  // inlet's condition (listed first) instead of being refused as an overlap.
+  const std::string text = replace_once(kWalled, "group: outlet, condition: dirichlet, value: 0}",
+                                        "group: walls, condition: neumann, value: 0.5}");
+  const Scene s = channel(dir, text);
+  ASSERT_EQ(s.species[0].boundaries.size(), 2U);
+  EXPECT_EQ(s.species[0].boundaries[1].region, "duct/walls");
+  const auto inlet = region_particles(s, "duct/inlet");
+  const auto walls = region_particles(s, "duct/walls");
+  ASSERT_FALSE(walls.empty());
+  std::vector<std::uint32_t> both;
+  std::set_intersection(inlet.begin(), inlet.end(), walls.begin(), walls.end(),
+                        std::back_inserter(both));
+  EXPECT_TRUE(both.empty());
+  for (const auto i : walls) {  // behind the bottom or the top, none at x < 0
+    EXPECT_GT(s.particles.positions[3 * i], 0.0) << i;
+  }
+}
+
+TEST(SurfaceGroupBoundary, WrongSurfacesAndGroupsAreRefusedWithFileAndLine) {
+  struct Case {
+    std::string from, to, expected;
+  };
+  const std::string group = "group: inlet,";
+  const std::vector<Case> cases = {
+      {group, "group: inlt,",
+       "scene.yaml:13:32: species[0].boundaries[0].group: no physical group named 'inlt' in "},
+      {group, "group: inlt,",
+       "did you mean 'inlet'? (allowed: the groups of dimension 1: inlet, outlet, walls)"},
+      {group, "group: channel,", "species[0].boundaries[0].group: physical group 'channel' of "},
+      {group, "group: channel,", "has dimension 2; a part of the surface of a 2D body is a curve"},
+      {group, "group: corner,", "has dimension 0"},
+      {"{type: mesh, file: channel.msh}", "{type: box, lower: [0, 0], upper: [2, 1.2]}",
+       "scene.yaml:13:32: species[0].boundaries[0].group: 'group' names a physical group of a "
+       "mesh file, and the shape of 'duct' is not a mesh"},
+      {"{surface: duct, group: inlet,", "{group: inlet,",
+       "scene.yaml:13:17: species[0].boundaries[0].group: 'group' names a part of a body's "
+       "surface and needs 'surface'"},
+      {"{surface: duct, group: inlet,", "{region: all, surface: duct, group: inlet,",
+       "species[0].boundaries[0].surface: give either 'region'"},
+      {"{surface: duct, group: inlet,", "{surface: dcut, group: inlet,",
+       "scene.yaml:13:19: species[0].boundaries[0].surface: unknown surface 'dcut'; did you mean "
+       "'duct'?"},
+      {"{surface: duct, group: inlet, condition: dirichlet, value: 1}",
+       "{surface: duct, group: inlet, condition: inflow, value: 1}",
+       "species[0].boundaries[0].surface: condition 'inflow' needs a region of shape box or "
+       "channel"},
+      {"group: outlet, condition: dirichlet, value: 0}", "condition: dirichlet, value: 0}",
+       "species[0].boundaries[1].surface: the walls behind 'duct/surface' overlap the region of "
+       "species[0].boundaries[0]"},
+      {"spacing: 0.05\n", "spacing: 0.05\n  wall_depth: 0\n",
+       "species[0].boundaries[0].group: no wall particle lies behind group 'inlet' of 'duct'"},
+  };
+  GroupDir dir;
+  for (const auto& c : cases) {
+    const std::string msg = channel_error(dir, replace_once(kWalled, c.from, c.to));
+    EXPECT_NE(msg.find(c.expected), std::string::npos) << c.to << "\n" << msg;
+  }
+}
+
+TEST(SurfaceGroupBoundary, AGroupWithNoWallsOfItsOwnIsRefused) {
+  GroupDir dir;
+  // The walls listed first hold the corner sites; the inlet without them still has its own.
+  // A group listed twice has none left the second time.
+  const std::string text = replace_once(kWalled, "group: outlet,", "group: inlet,");
+  const std::string msg = channel_error(dir, text);
+  EXPECT_NE(msg.find("scene.yaml:14:32: species[0].boundaries[1].group: every wall particle "
+                     "behind group 'inlet' of 'duct' is held by an earlier entry's group"),
             std::string::npos)
       << msg;
 }

@@ -19,7 +19,8 @@ constexpr std::array<std::string_view, 5> kSpeciesKeys{"name", "stochastic", "di
                                                        "initial", "boundaries"};
 constexpr std::array<std::string_view, 5> kInitialKeys{"region", "count", "concentration",
                                                        "count_column", "concentration_column"};
-constexpr std::array<std::string_view, 4> kBoundaryKeys{"region", "condition", "value", "count"};
+constexpr std::array<std::string_view, 6> kBoundaryKeys{"region",    "surface", "group",
+                                                        "condition", "value",   "count"};
 constexpr std::array<std::string_view, 5> kConditions{"dirichlet", "neumann", "none", "free",
                                                       "inflow"};
 constexpr std::array<std::string_view, 9> kReactionKeys{
@@ -197,19 +198,92 @@ void refuse_wall_term(SceneContext& ctx, const Field& at, const std::string& wha
                            "fluid particles only");
 }
 
-void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
+/// The region of the wall particles `walls` that a species boundary names with `surface` (and
+/// `group`): `base` ("BODY/GROUP", or "BODY/surface"; never a scene name, which is an
+/// identifier), reused when a region of that name holds the same particles, else `base#2`, ...
+const Region* surface_region(SceneContext& ctx, const std::string& base,
+                             std::vector<std::uint32_t> walls) {
+  Scene& s = ctx.scene;
+  for (int n = 1;; ++n) {
+    const std::string name = n == 1 ? base : base + "#" + std::to_string(n);
+    const Region* old = s.find_region(name);
+    if (old && old->ids == walls) return old;
+    if (old) continue;
+    Region rg;
+    rg.name = name;
+    rg.shape = RegionShape::kIds;
+    rg.ids = std::move(walls);
+    resolve_membership(rg, s.particles, ctx.tolerance());
+    s.regions.push_back(std::move(rg));
+    return &s.regions.back();
+  }
+}
+
+/// The region of a boundary entry: `region: NAME`, or the wall particles behind `surface: BODY`
+/// (with `group: NAME`) as a region of their own (surface_region). A wall particle that an
+/// earlier entry's group of the same body already holds (one as near to two groups, behind a
+/// corner) stays with that entry: `owner` (per particle, the entry holding it) and `group_of`
+/// (per entry, "BODY/GROUP" for a group entry) say which. Null after an error.
+const Region* boundary_region(SceneContext& ctx, const Field& f, const Field& root,
+                              const std::vector<int>& owner,
+                              const std::vector<std::string>& group_of, std::string& group) {
+  YamlReader& r = ctx.reader;
+  const Field rf = YamlReader::child(f, "region");
+  const Field sf = YamlReader::child(f, "surface");
+  const Field gf = YamlReader::child(f, "group");
+  if (YamlReader::present(rf) && YamlReader::present(sf)) {
+    r.error(sf,
+            "give either 'region' (a region's non-fluid particles) or 'surface' (the walls "
+            "behind a fluid or solid body's surface, or with 'group' behind a part of it), "
+            "not both");
+    return nullptr;
+  }
+  if (YamlReader::present(gf) && !YamlReader::present(sf)) {
+    r.error(gf,
+            "'group' names a part of a body's surface and needs 'surface' (the body); "
+            "allowed: 'group' with 'surface' only");
+    return nullptr;
+  }
+  if (!YamlReader::present(sf)) {
+    const auto name = r.string(f, "region", true);
+    return name ? lookup_region(ctx, rf, *name) : nullptr;
+  }
+  auto walls = surface_walls(ctx, f, root);
+  if (!walls) return nullptr;
+  const std::string body = r.string(f, "surface", true).value_or("");
+  const auto gname = YamlReader::present(gf) ? r.string(f, "group", true) : std::nullopt;
+  group = gname ? body + "/" + *gname : std::string();
+  if (gname) {
+    std::erase_if(*walls, [&](std::uint32_t i) {
+      const int o = owner.empty() ? -1 : owner[i];
+      if (o < 0) return false;
+      const std::string& held = group_of[static_cast<std::size_t>(o)];
+      return !held.empty() && held.substr(0, held.find('/')) == body;
+    });
+    if (walls->empty()) {
+      r.error(gf, "every wall particle behind group '" + *gname + "' of '" + body +
+                      "' is held by an earlier entry's group of the same body; allowed: a group "
+                      "with walls of its own behind it");
+      return nullptr;
+    }
+  }
+  return surface_region(ctx, gname ? group : body + "/surface", std::move(*walls));
+}
+
+void read_boundaries(SceneContext& ctx, const Field& sp_field, const Field& root, Species& sp) {
   YamlReader& r = ctx.reader;
   const ParticleState& p = ctx.scene.particles;
   const Field list = YamlReader::child(sp_field, "boundaries");
   if (!r.expect_sequence(list)) return;
   std::vector<int> owner(ctx.particles_ok ? p.size() : 0, -1);
+  std::vector<std::string> group_of(list.node.size());
   for (std::size_t k = 0; k < list.node.size(); ++k) {
     const Field f = YamlReader::element(list, k);
     if (!r.expect_map(f, kBoundaryKeys)) continue;
     SpeciesBoundary b;
-    const auto name = r.string(f, "region", true);
-    const Field rf = YamlReader::child(f, "region");
-    const Region* rg = name ? lookup_region(ctx, rf, *name) : nullptr;
+    const bool on_surface = YamlReader::present(YamlReader::child(f, "surface"));
+    const Field rf = YamlReader::child(f, on_surface ? "surface" : "region");
+    const Region* rg = boundary_region(ctx, f, root, owner, group_of, group_of[k]);
     const auto cond = r.choice(f, "condition", kConditions, true, "boundary condition");
     if (!cond) continue;
     b.condition = *cond == "dirichlet" ? BoundaryCondition::kDirichlet
@@ -225,6 +299,13 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
     }
     const bool inflow = b.condition == BoundaryCondition::kInflow;
     const bool held = b.condition == BoundaryCondition::kDirichlet || inflow;
+    if (inflow && on_surface) {
+      r.error(rf,
+              "condition 'inflow' needs a region of shape box or channel (it holds whatever "
+              "particles are inside the shape at each step), and 'surface' names fixed wall "
+              "particles; allowed: 'region' with a box or channel region");
+      continue;
+    }
     if (inflow && rg && rg->shape != RegionShape::kBox && rg->shape != RegionShape::kChannel) {
       r.error(rf, "condition 'inflow' needs a region of shape box or channel ('" + rg->name +
                       "' is a " + std::string(to_string(rg->shape)) + ")");
@@ -289,8 +370,10 @@ void read_boundaries(SceneContext& ctx, const Field& sp_field, Species& sp) {
         if (p.kind(i) == ParticleKind::kFluid) {
           ++fluid;
         } else if (owner[i] >= 0) {
-          r.error(rf, "region '" + rg->name + "' overlaps the region of " + list.path + "[" +
-                          std::to_string(owner[i]) + "] (particle " + std::to_string(i) +
+          const std::string what = on_surface ? "the walls behind '" + rg->name + "' overlap"
+                                              : "region '" + rg->name + "' overlaps";
+          r.error(rf, what + " the region of " + list.path + "[" + std::to_string(owner[i]) +
+                          "] (particle " + std::to_string(i) +
                           "); a particle can have one condition per species");
           break;
         } else {
@@ -417,7 +500,7 @@ void read_species(SceneContext& ctx, const Field& root) {
       sp.diffusivity =
           r.number(f, "diffusivity", Bound::kNonNegative, "length^2/time", true).value_or(0.0);
       read_initial(ctx, f, sp);
-      read_boundaries(ctx, f, sp);
+      read_boundaries(ctx, f, root, sp);
       model::Problems problems;  // the model's range checks, reported at their keys
       model::check(sp, problems);
       const std::pair<std::string_view, std::string_view> units[] = {

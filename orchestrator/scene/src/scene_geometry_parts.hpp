@@ -52,6 +52,28 @@ struct MeshBody {
   g::ShapePtr shape;                              ///< the body as placed
 };
 
+/// One physical group of a mesh body's surface (`group: NAME` with `surface: BODY`).
+struct SurfaceGroup {
+  std::vector<std::uint8_t> part;  ///< per particle: 1 when its nearest surface element is one
+                                   ///< of the group's
+  std::optional<double> area;      ///< the group's exact area, placed as the body is
+  bool inside_box = true;          ///< the group's bounds lie inside the box
+};
+
+/// The fluid or solid body of `geometry` that `surface: name` names (scene_surface_groups.cpp);
+/// null, with an error at `sf` (the nearest name and the allowed ones; a region body has no
+/// surface).
+const GeometryBody* surface_body(SceneContext& ctx, const Field& sf, const std::string& name);
+
+/// The particles of kind `kind` (fluid: next to the body; wall: behind it) whose nearest surface
+/// element is one of `group`'s: those no farther from the group (placed as the body) than from
+/// the body's whole surface, to 1e-6 spacings (a particle as near to two groups, at a corner,
+/// belongs to both). Null, with an error at `gf`, when the body is not a mesh or its file has no
+/// such group of dimension d - 1 (scene_surface_groups.cpp).
+std::optional<SurfaceGroup> read_surface_group(SceneContext& ctx, const Field& gf,
+                                               const GeometryBody& body, const std::string& group,
+                                               ParticleKind kind);
+
 struct BodyRead {
   std::string name;
   std::string role;

@@ -191,9 +191,14 @@ void read_regions(SceneContext& ctx, const Field& root) {
 
 const Region* lookup_region(SceneContext& ctx, const Field& where, const std::string& name) {
   if (name == kAllRegion) return &ctx.all_region;
-  if (const Region* rg = ctx.scene.find_region(name)) return rg;
+  // The walls behind a surface or a group that a species boundary names ("BODY/NAME",
+  // scene_chemistry.cpp) are regions of the scene that the file cannot name.
+  const Region* found = ctx.scene.find_region(name);
+  if (found && valid_identifier(name)) return found;
   std::vector<std::string_view> known{kAllRegion};
-  for (const auto& rg : ctx.scene.regions) known.push_back(rg.name);
+  for (const auto& rg : ctx.scene.regions) {
+    if (valid_identifier(rg.name)) known.push_back(rg.name);
+  }
   std::string msg = "unknown region '" + name + "'";
   if (auto near = nearest_name(name, known)) msg += "; did you mean '" + *near + "'?";
   msg += " (defined: " + join_names(known) + ")";

@@ -81,6 +81,12 @@ void read_reactions(SceneContext& ctx, const Field& root);
 /// reaction's boundary particles and areas, or says why not and returns false.
 bool read_surface_share(SceneContext& ctx, const Field& f, const Field& root,
                         const std::string& name, Reaction& rx);
+/// A species boundary's `surface: BODY` (with `group`; scene_surface_groups.cpp): the wall
+/// particles behind BODY's surface (every wall layer), or behind the part of it that a physical
+/// group of its mesh file covers, ascending; nullopt, with an error at file:line, when there is
+/// none or the keys are wrong.
+std::optional<std::vector<std::uint32_t>> surface_walls(SceneContext& ctx, const Field& f,
+                                                        const Field& root);
 /// Top-level "boundary_fluxes" (scene_fluxes.cpp), after read_reactions: each one a reaction
 /// with a law and its boundary particles and areas.
 void read_boundary_fluxes(SceneContext& ctx, const Field& root);
