@@ -60,7 +60,8 @@ std::vector<fs::path> tapes(const fs::path& sweep_dir) {
 /// Per fluid key: how many runs replayed it and how many recorded it.
 std::map<std::string, std::pair<int, int>> replays_by_key(const fs::path& sweep_dir) {
   std::map<std::string, std::pair<int, int>> out;
-  for (const auto& r : json_of(sweep_dir / "sweep.json")["runs"]) {
+  const auto m = json_of(sweep_dir / "sweep.json");
+  for (const auto& r : m["runs"]) {
     const auto res = json_of(sweep_dir / r["dir"].get<std::string>() / "result.json");
     EXPECT_EQ(res["state"], "ok") << res.dump();
     if (!res.value("flow_replay", false)) continue;
