@@ -53,12 +53,26 @@ int report_failed_realizations(const std::filesystem::path& dir,
 // Flow replay in an ensemble (flow_replay_pass.cpp).
 /// DIR/flow_replay.bin.
 std::filesystem::path flow_replay_path(const std::filesystem::path& dir);
-/// The flow replay file of the ensemble in `dir`: an existing one (its scene hash
+/// The flow replay file of the ensemble in `dir`: an existing one (its fluid key
 /// checked), else the fluid-only pass writes it. Returns "" when a stop was
 /// requested during the pass (nothing written).
 std::filesystem::path prepare_flow_replay(const Scene& scene, const Plan& plan,
                                           const ServiceOptions& o,
                                           const std::filesystem::path& dir);
+/// What shared_flow_tape() found or did.
+struct SharedFlowTape {
+  std::filesystem::path path;  ///< the complete file to replay; "" = none (`stopped`, `reason`)
+  bool recorded = false;       ///< this process recorded it
+  bool stopped = false;        ///< a stop was requested while waiting or recording
+  std::string reason;          ///< why there is none when not stopped (no file locks there)
+};
+/// The flow replay file `path` shared by runs that may start at once (a sweep's runs of one
+/// fluid, the tasks of an array): an existing complete one (its fluid key checked), else
+/// the first run to take the exclusive lock `path` with extension .lock records it and the
+/// others wait on the lock, then replay it. A recorder that dies releases the lock; its
+/// partial file is recorded again by the next.
+SharedFlowTape shared_flow_tape(const Scene& scene, const Plan& plan, const ServiceOptions& o,
+                                const std::filesystem::path& path);
 /// The realization in `realization_dir` has a checkpoint that replays the flow.
 bool checkpoint_replays_flow(const std::filesystem::path& realization_dir);
 

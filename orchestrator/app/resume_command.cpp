@@ -11,7 +11,9 @@
 #include "sadr/orchestrator/flow_replay.hpp"
 #include "sadr/orchestrator/run_manifest.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
+#include "sadr/orchestrator/scene_messages.hpp"
 #include "sadr/orchestrator/scene_override.hpp"
+#include "sadr/orchestrator/sweep_manifest.hpp"
 
 namespace sadr::orchestrator {
 namespace fs = std::filesystem;
@@ -69,7 +71,13 @@ int cmd_resume(const ResumeCommandOptions& c) {
   base.progress = !o.quiet && !o.no_progress;
   if (const auto f = cp.blobs.find("fluid");
       f != cp.blobs.end() && is_flow_replay_snapshot(f->second.bytes)) {
-    base.flow_replay = flow_replay_path(run_dir.parent_path());  // one realization of an ensemble
+    // One realization of an ensemble or array (OUTPUT/flow_replay.bin), or a sweep's run
+    // (SWEEP_DIR/flows/<fluid key>.bin).
+    base.flow_replay = flow_replay_path(run_dir.parent_path());
+    const fs::path sweep_dir = run_dir.parent_path().parent_path();
+    if (!fs::exists(base.flow_replay) && fs::exists(sweep_dir / std::string(kSweepManifestName))) {
+      base.flow_replay = sweep_dir / flow_tape_file(fluid_key(scene, plan));
+    }
     if (!o.quiet) {
       std::fprintf(stderr, "sadr: the realization replays the flow in %s\n",
                    base.flow_replay.string().c_str());

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `sadr run SCENE`: one realization, one task of a cluster array
-// (--realization K), or an ensemble of R realizations (ensemble_pool.hpp).
+// (--realization K; the tasks share OUTPUT/flow_replay.bin when the fluid is
+// deterministic), or an ensemble of R realizations (ensemble_pool.hpp).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "sadr/common/log.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/diagnostics.hpp"
 #include "sadr/orchestrator/ensemble_accumulator.hpp"
@@ -105,6 +107,12 @@ int cmd_run(const RunCommandOptions& c) {
   if (jobs > 1) setenv("OMP_NUM_THREADS", "1", 0);  // one core per realization
   configure_threads_and_overlap(plan, o, jobs);
   decide_flow_replay(plan, o.no_flow_replay, c.realization.empty() ? r_count : 1);
+  if (!c.realization.empty() && plan.flow_replay_allowed && !o.no_flow_replay) {
+    plan.flow_replay = true;
+    plan.flow_replay_reason =
+        "array task: the tasks of one output folder share its flow_replay.bin, the first "
+        "records it";
+  }
   print_plan(scene, plan, o);
   check_stop_at(o, scene, 0.0);
   if (!c.realization.empty() && o.output.empty()) {
@@ -127,6 +135,16 @@ int cmd_run(const RunCommandOptions& c) {
     RunOptions base;
     base.progress = !o.quiet && !o.no_progress;
     base.progress_label = name + " ";
+    if (plan.flow_replay) {
+      const SharedFlowTape tape = shared_flow_tape(scene, plan, o, flow_replay_path(out));
+      if (tape.stopped) return kExitInterrupted;  // nothing of the realization ran yet
+      if (tape.path.empty()) {
+        log::warn(tape.reason);
+        plan.flow_replay = false;
+        plan.flow_replay_reason = tape.reason;
+      }
+      base.flow_replay = tape.path;
+    }
     const RunResult res = run_realization(scene, plan, o, task, out / name, nullptr, base);
     if (!res.interrupted) summarize_at_end(out / name, o.quiet);
     return res.interrupted && interrupt_requested() ? kExitInterrupted : kExitOk;

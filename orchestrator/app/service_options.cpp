@@ -77,9 +77,9 @@ void add_retries_option(CLI::App* cmd, ServiceOptions& o) {
 
 void add_flow_replay_option(CLI::App* cmd, ServiceOptions& o) {
   cmd->add_flag("--no-flow-replay", o.no_flow_replay,
-                "ensembles: step the fluid in every realization, even when it is the same in "
-                "all of them (default: computed once and replayed when the fluid draws no "
-                "random numbers and reads nothing of the SSA; docs/cli.md)");
+                "ensembles and array tasks: step the fluid in every realization, even when it "
+                "is the same in all of them (default: computed once and replayed when the "
+                "fluid draws no random numbers and reads nothing of the SSA; docs/cli.md)");
 }
 
 int resolve_service_mode(ServiceOptions& o) {

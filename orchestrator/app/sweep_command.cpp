@@ -18,6 +18,7 @@
 #include "sadr/orchestrator/sweep_aggregation.hpp"
 #include "sadr/orchestrator/sweep_manifest.hpp"
 #include "sweep_executors.hpp"
+#include "sweep_flows.hpp"
 
 namespace sadr::orchestrator {
 namespace fs = std::filesystem;
@@ -34,6 +35,7 @@ struct SweepCommandOptions {
   bool force = false;           ///< start over in a directory that holds another sweep
   bool quiet = false;           ///< no per-run lines
   bool dry_run = false;         ///< check and list the runs, start nothing
+  bool no_flow_replay = false;  ///< every run steps its own fluid
 };
 
 /// Loads every point's scene (realization 0's overrides) so that a bad
@@ -56,8 +58,9 @@ std::vector<std::vector<std::string>> validate_points(const SweepManifest& m) {
 
 /// `sadr sweep --dry-run`: every point's scene checked (with its warnings), and what would
 /// run where; nothing is written or started.
-int print_dry_run(const SweepManifest& m, const fs::path& dir) {
+int print_dry_run(SweepManifest& m, const fs::path& dir, bool no_flow_replay) {
   const auto warnings = validate_points(m);
+  decide_sweep_flows(m, no_flow_replay);
   std::printf("sweep %s: %zu points x %zu realizations = %zu runs (%s executor), in %s\n",
               m.sweep_file.c_str(), m.points.size(), m.realizations, m.runs.size(),
               m.executor.type.c_str(), dir.string().c_str());
@@ -70,6 +73,7 @@ int print_dry_run(const SweepManifest& m, const fs::path& dir) {
     const SweepRun& last = m.runs.at(p.index * m.realizations + m.realizations - 1);
     std::printf("point %zu: %s -> %s .. %s\n", p.index, values.c_str(), first.dir.c_str(),
                 last.dir.c_str());
+    std::printf("  %s\n", flow_line(m.flows.at(p.index)).c_str());
     for (const auto& w : warnings.at(p.index)) std::printf("  warning: %s\n", w.c_str());
   }
   std::printf("dry run: every point's scene is valid; nothing was written or started\n");
@@ -90,7 +94,7 @@ int cmd_sweep(const SweepCommandOptions& o) {
                                  : fs::path("sweeps") / fs::path(o.sweep).stem();
     const std::uint64_t seed = spec.seed ? *spec.seed : load_scene(spec.base_scene).seed;
     SweepManifest fresh = SweepManifest::plan(spec, seed);
-    if (o.dry_run) return print_dry_run(fresh, dir);
+    if (o.dry_run) return print_dry_run(fresh, dir, o.no_flow_replay);
     if (fs::exists(dir / std::string(kSweepManifestName)) && !o.force) {
       m = SweepManifest::read(dir);
       if (!m.same_runs(fresh)) {
@@ -113,6 +117,16 @@ int cmd_sweep(const SweepCommandOptions& o) {
   }
   if (!o.executor.empty()) m.executor.type = o.executor;
   if (o.workers > 0) m.executor.workers = o.workers;
+  // Flow replay per point, decided again by each invocation that runs (the Slurm
+  // aggregation job keeps the decision its runs read).
+  if (!o.aggregate_only || m.flows.empty()) {
+    decide_sweep_flows(m, o.no_flow_replay);
+    if (!o.quiet && !o.aggregate_only) {
+      for (const auto& p : m.points) {
+        std::fprintf(stderr, "sadr: point %zu: %s\n", p.index, flow_line(m.flows[p.index]).c_str());
+      }
+    }
+  }
   m.fold_outcomes(dir);
   m.write(dir);
   std::size_t skipped = 0;
@@ -141,6 +155,7 @@ int cmd_sweep(const SweepCommandOptions& o) {
   }
   m.fold_outcomes(dir);
   aggregate_sweep(m, dir, o.quiet);
+  if (m.keep == KeepPolicy::kAggregates) (void)remove_finished_flows(m, dir);
   m.write(dir);
   const std::size_t failed = print_sweep_failures(m);
   if (failed > 0) {
@@ -188,6 +203,10 @@ Subcommand add_sweep_command(CLI::App& app) {
                     "sweeps/<file stem>)");
   sweep->add_flag("--force", o->force, "start over in a directory that holds another sweep");
   sweep->add_flag("-q,--quiet", o->quiet, "no per-run lines");
+  sweep->add_flag("--no-flow-replay", o->no_flow_replay,
+                  "every run steps its own fluid (default: runs whose fluid is the same, "
+                  "deterministic and not reading the SSA compute it once and replay it; "
+                  "docs/sweeps.md)");
   sweep->add_flag("--dry-run", o->dry_run,
                   "check every point's scene and list the runs and their folders; write and "
                   "start nothing");

@@ -3,8 +3,10 @@
 // every executor. The index comes from --index, SLURM_ARRAY_TASK_ID or
 // JOB_COMPLETION_INDEX (Kubernetes Indexed Job). The run's scene is the base
 // scene with its point's overrides and `seed` = the point seed; it resumes
-// from its checkpoint when one is there. It writes only its own directory,
-// ending with result.json (state, exit code, reason, CPU seconds).
+// from its checkpoint when one is there. When its point replays the flow
+// (sweep_flows.hpp) it replays SWEEP_DIR/flows/<key>.bin, recording it first
+// when no other run has. It writes only its own directory (and that file),
+// ending with result.json (state, exit code, reason, CPU seconds, flow replay).
 #include <sys/resource.h>
 
 #include <cstdio>
@@ -14,9 +16,12 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "sadr/common/log.hpp"
 #include "sadr/orchestrator/atomic_file.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
+#include "sadr/orchestrator/scene_messages.hpp"
 #include "sadr/orchestrator/sweep_manifest.hpp"
+#include "sweep_flows.hpp"
 
 namespace sadr::orchestrator {
 namespace fs = std::filesystem;
@@ -96,9 +101,32 @@ int cmd_sweep_task(const SweepTaskOptions& c) {
     } else {
       for (const char* sub : {"frames", "checkpoint"}) fs::remove_all(rd / sub);
     }
+    decide_sweep_task_flow(plan, m, run, rd, resume.has_value());
     if (!o.quiet) print_plan(scene, plan, o);
     RunOptions base;
     base.progress = false;
+    if (plan.flow_replay) {
+      out.fluid_key = fluid_key(scene, plan);
+      const SharedFlowTape tape =
+          shared_flow_tape(scene, plan, o, dir / flow_tape_file(out.fluid_key));
+      out.flow_recorded = tape.recorded;
+      if (tape.stopped) {  // nothing ran: resumed (from t = 0) like an interrupted run
+        out.state = RunState::kInterrupted;
+        out.exit_code = kExitInterrupted;
+        out.reason = "interrupted while its flow replay file was recorded or awaited";
+        out.cpu_s = cpu_seconds();
+        write_run_outcome(rd, out);
+        return out.exit_code;
+      }
+      if (tape.path.empty()) {
+        log::warn("run ", run.index, ": ", tape.reason);
+        plan.flow_replay = false;
+        plan.flow_replay_reason = tape.reason;
+        out.fluid_key.clear();
+      }
+      base.flow_replay = tape.path;
+    }
+    out.flow_replay = plan.flow_replay;
     const RunResult res =
         run_realization(scene, plan, o, run.realization, rd, resume ? &*resume : nullptr, base);
     out.state = res.interrupted ? RunState::kInterrupted : RunState::kOk;

@@ -69,20 +69,22 @@ def run_ensemble(scene: str | os.PathLike, output: str | os.PathLike, realizatio
 
 
 def run_sweep(sweep_file: str | os.PathLike, output: str | os.PathLike, client, *, sadr_bin=None,
-              threads: int = 1) -> Sweep:
+              threads: int = 1, flow_replay: bool = True) -> Sweep:
     """A `sadr sweep` whose runs are Dask tasks: prepares ``output`` (``sadr
     sweep FILE -o OUT --aggregate-only`` writes sweep.json with every run
     pending), runs each unfinished run as ``sadr sweep-task OUT -q`` with its
     index in ``JOB_COMPLETION_INDEX`` (the Slurm array task's command), then
-    aggregates with ``sadr sweep --resume OUT --aggregate-only``. Returns the
-    sadr.Sweep; a failed run raises the SadrError of its exit code."""
+    aggregates with ``sadr sweep --resume OUT --aggregate-only``. Runs whose
+    fluid is the same share one recorded flow (``OUT/flows``, docs/sweeps.md);
+    ``flow_replay=False`` passes ``--no-flow-replay``. Returns the sadr.Sweep;
+    a failed run raises the SadrError of its exit code."""
     from .sweeps import Sweep
 
     output = Path(output).resolve()
     sadr_bin = str(sadr_bin or find_sadr())
     if not (output / "sweep.json").is_file():
-        proc = run_cli(["sweep", Path(sweep_file).resolve(), "-o", output, "--aggregate-only", "-q"],
-                       check=False)
+        args = ["sweep", Path(sweep_file).resolve(), "-o", output, "--aggregate-only", "-q"]
+        proc = run_cli(args + ([] if flow_replay else ["--no-flow-replay"]), check=False)
         if proc.returncode not in (0, 3) or not (output / "sweep.json").is_file():
             raise error_for(proc.returncode, proc.stderr, proc.args, "sadr sweep")
     pending = [r["index"] for r in Sweep(output).manifest["runs"] if r["state"] != "ok"]

@@ -4,8 +4,9 @@
 // its fluid once and replays it; every frame, the .pvd index and the ensemble
 // CSVs are byte-identical to the same ensemble with --no-flow-replay. A
 // replayed ensemble stopped with --stop-at resumes to the same bytes, a
-// corrupt flow replay file is refused loudly, and thermal noise turns replay
-// off with the reason.
+// corrupt flow replay file is refused loudly, two array tasks started together
+// record the fluid once (under a lock) and replay it, and thermal noise turns
+// replay off with the reason.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -131,6 +132,41 @@ TEST(FlowReplay, AStoppedReplayedEnsembleResumesToTheSameBytesAndACorruptFileIsR
   const fs::path log = d / "broken.log";
   EXPECT_NE(run(bin("sadr") + " resume " + (d / "broken").string() + " -q --retries 0", log), 0);
   EXPECT_NE(read_file(log).find("checksum mismatch"), std::string::npos) << read_file(log);
+}
+
+TEST(FlowReplay, ArrayTasksStartedTogetherRecordTheFluidOnceAndReplayIt) {
+  const fs::path d = scratch("flow-replay-array");
+  const fs::path scene = write_scene(d, cell_scene());
+  const std::string sadr = bin("sadr") + " run " + scene.string() + " --no-progress ";
+  ASSERT_EQ(run(sadr + "-q -r 2 -j 2 --no-flow-replay -o " + (d / "step").string(), d / "step.log"),
+            0)
+      << read_file(d / "step.log");
+  // Two tasks of one array at once: one records DIR/flow_replay.bin under the lock, the
+  // other waits for it; both replay it.
+  const std::string task = sadr + "-o " + (d / "array").string() + " --realization ";
+  ASSERT_EQ(run("(" + task + "0 > " + (d / "t0.log").string() + " 2>&1 & " + task + "1 > " +
+                    (d / "t1.log").string() + " 2>&1; r1=$?; wait $!; r0=$?; exit $((r0 + r1)))",
+                d / "array.log"),
+            0)
+      << read_file(d / "t0.log") << read_file(d / "t1.log");
+  const std::string logs = read_file(d / "t0.log") + read_file(d / "t1.log");
+  EXPECT_NE(logs.find("flow replay: on (array task:"), std::string::npos) << logs;
+  std::size_t recorded = 0;
+  for (auto at = logs.find("computing the fluid once"); at != std::string::npos;
+       at = logs.find("computing the fluid once", at + 1)) {
+    ++recorded;
+  }
+  EXPECT_EQ(recorded, 1u) << logs;
+  EXPECT_TRUE(fs::exists(d / "array" / "flow_replay.bin"));
+  for (const char* r : {"realization_0000", "realization_0001"}) {
+    EXPECT_EQ(run_json(d / "array" / r)["plan"]["flow_replay"], true) << r;
+    EXPECT_EQ(run_json(d / "array" / r)["timings_s"].value("fluid_compute", 0.0), 0.0) << r;
+    for (const char* f : {"frame_000004.csv", "frame_000004.vtu", "frame_000000.csv"}) {
+      EXPECT_TRUE(read_file(d / "array" / r / "frames" / f) ==
+                  read_file(d / "step" / r / "frames" / f))
+          << r << "/" << f;
+    }
+  }
 }
 
 TEST(FlowReplay, ThermalNoiseTurnsItOffWithTheReason) {

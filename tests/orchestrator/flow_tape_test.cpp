@@ -169,7 +169,7 @@ TEST(FlowTape, ATruncatedFileIsDetected) {
 
 TEST(FlowTape, ACorruptHeaderAnotherSceneAndReadingPastTheEndAreRefused) {
   const fs::path p = write_tape("header.bin");
-  EXPECT_NE(error_of(p, "fnv1a64:ffffffffffffffff").find("recorded for the scene"),
+  EXPECT_NE(error_of(p, "fnv1a64:ffffffffffffffff").find("recorded for the fluid"),
             std::string::npos);
   EXPECT_NE(error_of(p).find("has no record 6 of 6"), std::string::npos) << error_of(p);
   flip_byte(p, 50);  // the record count

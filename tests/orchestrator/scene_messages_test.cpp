@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The scene's Morris wall surfaces (fluid.wall_planes) reach ssa_service too when a stochastic
 // species has a Dirichlet boundary, so its reservoirs hold their values on the same surfaces as
-// the fluid's deterministic species (docs/ssa-core.md "Morris walls").
+// the fluid's deterministic species (docs/ssa-core.md "Morris walls"). The scene's meaning
+// hash, and the fluid key (what the fluid receives and the coupling schedule).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -69,6 +70,50 @@ TEST(SceneMessages, MeaningHashIsTheMeaningNotTheBytes) {
         << from << " -> " << to;
   }
   EXPECT_NE(meaning(test::kBaseScene + "seed: 3\n"), base);
+}
+
+/// kBaseScene (stochastic A, deterministic B on a static fluid) with a deterministic reaction.
+const std::string kHybrid =
+    test::replace_once(test::kBaseScene, "  - {equation: \"A -> 0\", rate: 1.0}\n",
+                       "  - {equation: \"A -> 0\", rate: 1.0}\n"
+                       "  - {equation: \"B -> 0\", rate: 0.5}\n");
+
+std::string fluid_of(const std::string& text) {
+  const Scene scene = parse_scene(text, "scene.yaml");
+  const Plan plan = make_plan(scene);
+  EXPECT_TRUE(plan.flow_replay_allowed) << plan.flow_replay_reason;
+  return fluid_key(scene, plan);
+}
+
+// A sweep's points share a recorded flow exactly when their fluid keys are equal.
+TEST(SceneMessages, FluidKeyIsWhatTheFluidReceivesAndWhenNotWhatOnlyTheSsaReceives) {
+  const std::string base = fluid_of(kHybrid);
+  EXPECT_EQ(base.rfind("fnv1a64:", 0), 0u) << base;
+  EXPECT_NE(base, meaning(kHybrid));
+  // What only the SSA receives (a stochastic reaction's rate, a stochastic species'
+  // diffusivity and boundary value) and the seed: the same fluid.
+  for (const auto& [from, to] :
+       std::vector<std::pair<std::string, std::string>>{{"rate: 1.0", "rate: 1.5"},
+                                                        {"value: 4}", "value: 5}"},
+                                                        {"diffusivity: 0.1", "diffusivity: 0.4"}}) {
+    const std::string text = test::replace_once(kHybrid, from, to);
+    EXPECT_EQ(fluid_of(text), base) << from << " -> " << to;
+    EXPECT_NE(meaning(text), meaning(kHybrid)) << from << " -> " << to;
+  }
+  EXPECT_EQ(fluid_of(kHybrid + "seed: 3\n"), base);
+  // What the fluid receives (a deterministic reaction or species, a fluid parameter, the
+  // particles), the coupling schedule and the output times: another fluid.
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"rate: 0.5", "rate: 0.7"},
+           {"diffusivity: 0.2", "diffusivity: 0.3"},
+           {"  backend: static\n", "  backend: static\n  reference_density: 2.0\n"},
+           {"spacing: 0.25", "spacing: 0.125"},
+           {"  coupling_step: 0.1\n", "  coupling_step: 0.05\n"},
+           {"  end: 1.0\n", "  end: 2.0\n"},
+           {"  end: 1.0\n", "  end: 1.0\n  splitting: strang\n"},
+           {"  end: 1.0\n", "  end: 1.0\noutput: {times: [0.5]}\n"}}) {
+    EXPECT_NE(fluid_of(test::replace_once(kHybrid, from, to)), base) << from << " -> " << to;
+  }
 }
 
 }  // namespace

@@ -111,6 +111,19 @@ TEST(SweepManifest, SeedsDependOnSweepSeedPointAndRealizationAndRoundTrip) {
   EXPECT_TRUE(back.same_runs(m));
   EXPECT_EQ(back.to_json(), m.to_json());
   EXPECT_THROW((void)m.run(12), InvalidArgument);
+  EXPECT_TRUE(back.flows.empty());  // not decided: every run steps its own fluid
+  // The flow replay decision per point round-trips; the file of a key is under flows/.
+  SweepManifest f = m;
+  f.flows = {{true, "fnv1a64:0123456789abcdef", "shared"},
+             {false, "", "thermal noise"},
+             {true, "fnv1a64:0123456789abcdef", "shared"}};
+  f.write(d);
+  const SweepManifest g = SweepManifest::read(d);
+  ASSERT_EQ(g.flows.size(), 3u);
+  EXPECT_TRUE(g.flows[2].replay);
+  EXPECT_EQ(g.flows[1].reason, "thermal noise");
+  EXPECT_EQ(g.to_json(), f.to_json());
+  EXPECT_EQ(flow_tape_file(g.flows[0].fluid_key), "flows/0123456789abcdef.bin");
   fs::remove_all(d);
 }
 

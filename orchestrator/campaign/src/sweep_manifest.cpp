@@ -32,6 +32,11 @@ std::string point_dir(std::size_t point) {
   return name;
 }
 
+std::string flow_tape_file(const std::string& key) {
+  const std::size_t colon = key.find(':');
+  return "flows/" + (colon == std::string::npos ? key : key.substr(colon + 1)) + ".bin";
+}
+
 std::string_view to_string(RunState state) {
   return kStates.at(static_cast<std::size_t>(state));
 }
@@ -44,6 +49,9 @@ void write_run_outcome(const fs::path& dir, const RunOutcome& o) {
                {"resumed", o.resumed},
                {"attempts", o.attempts},
                {"cpu_s", o.cpu_s},
+               {"flow_replay", o.flow_replay},
+               {"flow_recorded", o.flow_recorded},
+               {"fluid_key", o.fluid_key},
                {"written_utc", utc_now_iso8601()}};
   write_file_atomic(dir / "result.json", j.dump(2) + "\n");
 }
@@ -61,6 +69,9 @@ std::optional<RunOutcome> read_run_outcome(const fs::path& dir) {
     o.resumed = j.value("resumed", false);
     o.attempts = j.value("attempts", 1);
     o.cpu_s = j.value("cpu_s", -1.0);
+    o.flow_replay = j.value("flow_replay", false);
+    o.flow_recorded = j.value("flow_recorded", false);
+    o.fluid_key = j.value("fluid_key", std::string());
     return o;
   } catch (const std::exception&) {
     return std::nullopt;  // a torn or foreign file: the run is not finished
@@ -154,6 +165,11 @@ json SweepManifest::to_json() const {
                    {"overrides", texts},
                    {"seed", point_seeds.at(p.index)},
                    {"aggregate_dir", point_dir(p.index)}});
+    if (p.index < flows.size()) {
+      const PointFlow& f = flows[p.index];
+      pts.back()["flow_replay"] = {
+          {"on", f.replay}, {"fluid_key", f.fluid_key}, {"reason", f.reason}};
+    }
   }
   json rs = json::array();
   for (const auto& r : runs) {
@@ -216,6 +232,10 @@ SweepManifest SweepManifest::from_json(const json& j, const std::string& source)
         sp.overrides.push_back(parse_override(t.get<std::string>()));
       m.points.push_back(std::move(sp));
       m.point_seeds.push_back(p.at("seed").get<std::uint64_t>());
+      if (const auto f = p.find("flow_replay"); f != p.end()) {
+        m.flows.push_back({f->at("on").get<bool>(), f->at("fluid_key").get<std::string>(),
+                           f->at("reason").get<std::string>()});
+      }
     }
     for (const auto& r : j.at("runs")) {
       SweepRun run;
@@ -237,6 +257,7 @@ SweepManifest SweepManifest::from_json(const json& j, const std::string& source)
       m.runs.push_back(std::move(run));
     }
     m.aggregates = j.value("aggregates", json::object());
+    if (m.flows.size() != m.points.size()) m.flows.clear();  // all points, or none decided
     return m;
   } catch (const json::exception& e) {
     throw InvalidArgument(source + ": malformed sweep manifest: " + e.what());

@@ -32,7 +32,7 @@ class CoupledRun {
         seed_(realization_seed(scene.seed, options.realization)) {
     const std::string run_id = scene_.source_hash + "/" + std::to_string(seed_);
     if (!options.flow_replay.empty()) {
-      replay_.emplace(options.flow_replay, scene_meaning_hash(scene_, plan_));
+      replay_.emplace(options.flow_replay, fluid_key(scene_, plan_));
     } else if (plan_.fluid_service) {
       if (endpoints.fluid.empty()) throw FailedPrecondition("the plan needs fluid_service");
       fluid_.emplace(endpoints.fluid, options.timeout);

@@ -128,8 +128,8 @@ void FlowRecorder::restore(const std::string&) {
   throw Error(StatusCode::kInternal, "flow recording: no checkpoints in the fluid-only pass");
 }
 
-FlowReplay::FlowReplay(const std::filesystem::path& path, const std::string& scene_hash)
-    : tape_(path, scene_hash) {}
+FlowReplay::FlowReplay(const std::filesystem::path& path, const std::string& fluid_key)
+    : tape_(path, fluid_key) {}
 
 FlowRecord FlowReplay::expect(FlowCall call, const std::string& asked) {
   const std::uint64_t k = tape_.position().record;
@@ -208,7 +208,7 @@ RecordedFlow record_flow(const Scene& scene, const Plan& plan, const std::string
   if (options.liveness) fluid.set_liveness_check(options.liveness);
   fluid.set_run_id(scene.source_hash + "/" + std::to_string(seed));
   fluid.init(make_fluid_init(scene, plan, seed));  // geometry inline: no channel
-  FlowTapeWriter tape(options.path, scene_meaning_hash(scene, plan), scene.particles.size());
+  FlowTapeWriter tape(options.path, fluid_key(scene, plan), scene.particles.size());
   FlowRecorder recorder(fluid, tape);
   NoSsa ssa;
   RunManifest stats;

@@ -9,8 +9,10 @@
 #include <google/protobuf/io/coded_stream.h>
 #include <google/protobuf/io/zero_copy_stream_impl_lite.h>
 
+#include "sadr/orchestrator/frame_output.hpp"
 #include "sadr/orchestrator/hash.hpp"
 #include "sadr/orchestrator/scene_wall_tangents.hpp"
+#include "sadr/orchestrator/splitting_loop.hpp"
 #include "sadr/wire/convert.hpp"
 #include "sadr/wire/model_proto.hpp"
 
@@ -204,20 +206,28 @@ std::string init_bytes(const google::protobuf::MessageLite& m) {
   return out;
 }
 
+/// Where a law was written ("file:line", for messages) is not its meaning; a backend file is
+/// its bytes, not its path.
+void strip_origins(google::protobuf::RepeatedPtrField<common::v1::Reaction>& reactions) {
+  for (auto& r : reactions) {
+    if (r.has_law()) r.mutable_law()->clear_origin();
+  }
+}
+
+fluid::v1::InitRequest meaning_of_fluid_init(const Scene& scene, const Plan& plan,
+                                             std::uint64_t seed) {
+  fluid::v1::InitRequest fluid = make_fluid_init(scene, plan, seed);
+  strip_origins(*fluid.mutable_model()->mutable_reactions());
+  for (auto& [key, path] : *fluid.mutable_model()->mutable_files()) path = file_hash(path);
+  return fluid;
+}
+
 }  // namespace
 
 std::string scene_meaning_hash(const Scene& scene, const Plan& plan) {
-  // Where a law was written ("file:line", for messages) is not its meaning; a backend file is
-  // its bytes, not its path.
-  fluid::v1::InitRequest fluid = make_fluid_init(scene, plan, scene.seed);
+  const fluid::v1::InitRequest fluid = meaning_of_fluid_init(scene, plan, scene.seed);
   ssa::v1::InitRequest ssa = make_ssa_init(scene, plan, scene.seed, scene.particles);
-  for (auto* reactions :
-       {fluid.mutable_model()->mutable_reactions(), ssa.mutable_model()->mutable_reactions()}) {
-    for (auto& r : *reactions) {
-      if (r.has_law()) r.mutable_law()->clear_origin();
-    }
-  }
-  for (auto& [key, path] : *fluid.mutable_model()->mutable_files()) path = file_hash(path);
+  strip_origins(*ssa.mutable_model()->mutable_reactions());
   std::string bytes = init_bytes(fluid) + init_bytes(ssa);
   // The rest of the meaning as text (appends only: GCC 12 misreports chains of operator+).
   std::string text;
@@ -239,6 +249,28 @@ std::string scene_meaning_hash(const Scene& scene, const Plan& plan) {
   for (const auto& ob : o.observables) {
     add({"observable ", ob.name, " ", ob.species, " ", ob.region, ob.mean ? " mean" : " sum"});
   }
+  return content_hash(bytes + text);
+}
+
+std::string fluid_key(const Scene& scene, const Plan& plan) {
+  // The seed is the realization's: a fluid that draws no random numbers ignores it (flow
+  // replay is allowed only then, Plan::flow_replay_allowed).
+  std::string bytes = init_bytes(meaning_of_fluid_init(scene, plan, 0));
+  std::string text = "fluid key 1\n";
+  auto add = [&text](std::initializer_list<std::string_view> parts) {
+    for (const auto p : parts) text.append(p);
+    text.push_back('\n');
+  };
+  // The coupling schedule: which calls the loop makes of the fluid, and when.
+  const LoopSettings s = make_loop_settings(scene, plan);
+  add({"time ", format_value(s.tau), " ", format_value(s.t_end), " ", to_string(s.splitting)});
+  add({"fluid_stepping ", s.fluid_stepping ? "1" : "0", " calls_per_step ",
+       std::to_string(s.fluid_calls_per_step), " geometry_each_step ",
+       s.geometry_each_step ? "1" : "0", " frame_to_frame ", s.frame_to_frame ? "1" : "0"});
+  for (const auto& b : s.back_transfer) add({"back_transfer ", b});
+  for (const auto& f : s.frozen) add({"frozen ", f});
+  for (double t : s.output_times) add({"output ", format_value(t)});
+  for (const auto& f : frame_fluid_species(scene)) add({"frame species ", f});
   return content_hash(bytes + text);
 }
 

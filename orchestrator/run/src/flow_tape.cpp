@@ -141,7 +141,7 @@ std::string encode_header(const FlowTapeHeader& h) {
   Out o;
   o.bytes.append(kMagic);
   o.put(kFlowTapeVersion);
-  o.put_string(h.scene_hash);
+  o.put_string(h.fluid_key);
   o.put(h.particles);
   o.put(h.records);
   o.put(fnv1a64(o.bytes));
@@ -167,10 +167,10 @@ const char* to_string(FlowCall call) {
   return "?";
 }
 
-FlowTapeWriter::FlowTapeWriter(std::filesystem::path path, std::string scene_hash,
+FlowTapeWriter::FlowTapeWriter(std::filesystem::path path, std::string fluid_key,
                                std::uint64_t particles)
     : path_(std::move(path)), partial_(path_.string() + ".partial") {
-  header_.scene_hash = std::move(scene_hash);
+  header_.fluid_key = std::move(fluid_key);
   header_.particles = particles;
   out_.open(partial_, std::ios::binary | std::ios::trunc);
   if (!out_) throw IoError("cannot create '" + partial_.string() + "'");
@@ -209,7 +209,7 @@ std::uint64_t FlowTapeWriter::finish() {
   return std::filesystem::file_size(path_);
 }
 
-FlowTapeReader::FlowTapeReader(std::filesystem::path path, const std::string& expected_scene_hash)
+FlowTapeReader::FlowTapeReader(std::filesystem::path path, const std::string& expected_fluid_key)
     : path_(std::move(path)) {
   std::error_code ec;
   file_size_ = std::filesystem::file_size(path_, ec);
@@ -227,19 +227,19 @@ FlowTapeReader::FlowTapeReader(std::filesystem::path path, const std::string& ex
     fail("has format version " + std::to_string(version) + ", this build reads " +
          std::to_string(kFlowTapeVersion));
   }
-  if (n > 4096) fail("header: scene hash of " + std::to_string(n) + " bytes");
+  if (n > 4096) fail("header: fluid key of " + std::to_string(n) + " bytes");
   std::string rest(n + 24, '\0');
   in_.read(rest.data(), static_cast<std::streamsize>(rest.size()));
   if (!in_) fail("is truncated in its header");
-  header_.scene_hash = rest.substr(0, n);
+  header_.fluid_key = rest.substr(0, n);
   std::memcpy(&header_.particles, rest.data() + n, 8);
   std::memcpy(&header_.records, rest.data() + n + 8, 8);
   std::uint64_t sum = 0;
   std::memcpy(&sum, rest.data() + n + 16, 8);
   if (fnv1a64(head + rest.substr(0, n + 16)) != sum) fail("header checksum mismatch");
-  if (!expected_scene_hash.empty() && header_.scene_hash != expected_scene_hash) {
-    fail("was recorded for the scene " + header_.scene_hash + ", this run is " +
-         expected_scene_hash);
+  if (!expected_fluid_key.empty() && header_.fluid_key != expected_fluid_key) {
+    fail("was recorded for the fluid " + header_.fluid_key + ", this run's fluid is " +
+         expected_fluid_key + " (another fluid: its answers are not this run's)");
   }
   first_offset_ = head.size() + rest.size();
   pos_ = {0, first_offset_};

@@ -146,7 +146,8 @@ Plan make_plan(const Scene& scene) {
     p.flow_replay_reason = "fluid.body_forces: every realization writes its forces on bodies";
   } else {
     p.flow_replay_allowed = true;
-    p.flow_replay_reason = "on only for an ensemble, sadr run -r R with R > 1";
+    p.flow_replay_reason =
+        "on only where runs share the fluid: sadr run -r R (R > 1), array tasks, sweeps";
   }
   return p;
 }

@@ -33,6 +33,9 @@ struct RunOutcome {
   /// CPU seconds (user + sys) of this attempt's worker and the services it
   /// started and reaped; < 0 when not measured.
   double cpu_s = -1;
+  bool flow_replay = false;    ///< the run replayed its fluid (docs/sweeps.md, flow replay)
+  bool flow_recorded = false;  ///< ... and this attempt recorded the file
+  std::string fluid_key;       ///< fluid key of a replayed run ("" otherwise)
 };
 /// Writes `dir`/result.json atomically.
 void write_run_outcome(const std::filesystem::path& dir, const RunOutcome& outcome);
@@ -53,6 +56,13 @@ struct SweepRun {
   std::string kept = "all";  ///< "all" or "run.json" (frames removed after aggregation)
 };
 
+/// Flow replay of one point, decided by the driver (sadr sweep) and read by each sweep-task.
+struct PointFlow {
+  bool replay = false;    ///< its runs replay the file flow_tape_file(fluid_key)
+  std::string fluid_key;  ///< fluid_key() of the point's scene ("" when its fluid cannot replay)
+  std::string reason;     ///< why it does, or why not
+};
+
 struct SweepManifest {
   std::string sweep_file;
   std::string base_scene;
@@ -66,6 +76,9 @@ struct SweepManifest {
   std::vector<std::uint64_t> point_seeds;  ///< mix_seed(seed, point)
   std::vector<SweepRun> runs;
   nlohmann::json aggregates = nlohmann::json::object();  ///< per point: dir, realizations, notes
+  /// Per point (points[i]["flow_replay"] in sweep.json); empty: not decided, every run
+  /// steps its own fluid.
+  std::vector<PointFlow> flows;
 
   /// Folds each run's result.json into `runs` (state, exit code, reason,
   /// attempts, hash). A result left "running" by a worker that is gone
@@ -93,6 +106,10 @@ struct SweepManifest {
 
 /// "points/p0003": where point 3's aggregates go, relative to the sweep directory.
 std::string point_dir(std::size_t point);
+
+/// "flows/0123456789abcdef.bin": the flow replay file of fluid key `key`
+/// ("fnv1a64:0123456789abcdef"), relative to the sweep directory.
+std::string flow_tape_file(const std::string& key);
 
 inline constexpr std::string_view kSweepManifestName = "sweep.json";
 

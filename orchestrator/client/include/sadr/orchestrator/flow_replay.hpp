@@ -46,8 +46,8 @@ class FlowRecorder final : public FluidService {
 /// place in the file (is_flow_replay_snapshot); restore continues there.
 class FlowReplay final : public FluidService {
  public:
-  /// Opens `path`; its scene hash must be `scene_hash` (scene_meaning_hash()).
-  FlowReplay(const std::filesystem::path& path, const std::string& scene_hash);
+  /// Opens `path`; its header's fluid key must be `fluid_key` (fluid_key()).
+  FlowReplay(const std::filesystem::path& path, const std::string& fluid_key);
   FluidStep advance(std::uint64_t step_index, double dt, bool want_geometry,
                     const SpeciesCounts& counts,
                     const std::vector<std::string>& return_concentrations) override;

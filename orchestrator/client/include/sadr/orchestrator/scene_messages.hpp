@@ -30,4 +30,13 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
 /// key order or path (a scene built in Python equals its YAML); source_hash is the bytes'.
 std::string scene_meaning_hash(const Scene& scene, const Plan& plan);
 
+/// The fluid's meaning as one hash ("fnv1a64:<16 hex>"): the fluid_service Init message (its
+/// seed left out; laws without their origin, backend files as their bytes' hash), the coupling
+/// schedule (coupling step, end, splitting, fluid calls per step, geometry to the SSA each
+/// step, the species the SSA reads back) and the output times with the species frames ask the
+/// fluid for. Two scenes with the same key make the same fluid calls with the same answers when
+/// the fluid draws no random numbers: what the SSA alone receives (its rates, species, seed)
+/// does not enter it. The flow replay file's header holds it (flow_tape.hpp).
+std::string fluid_key(const Scene& scene, const Plan& plan);
+
 }  // namespace sadr::orchestrator

@@ -6,7 +6,8 @@
 /// instead of stepping the fluid again (plan.hpp, flow replay).
 ///
 /// Layout (little-endian, fixed-size integers, IEEE doubles as their bits):
-///   header: "SADRFLOW", u32 version, u32 n + n bytes of the scene meaning hash,
+///   header: "SADRFLOW", u32 version, u32 n + n bytes of the fluid key (fluid_key():
+///           what the fluid service receives, the coupling schedule, the output times),
 ///           u64 particles, u64 records, u64 FNV-1a 64 of the header bytes before it
 ///   record: u32 "REC1", u64 ordinal (0, 1, ...), u64 payload size, payload,
 ///           u64 FNV-1a 64 of the ordinal, size and payload bytes
@@ -19,7 +20,8 @@
 /// The writer writes to `<path>.partial` and renames it only when finished (the
 /// header's record count filled in), so a file under the final name is complete.
 /// Every read is checked: a bad magic, version, hash, checksum or a short read
-/// is an InvalidArgument naming the file, the record and what differs.
+/// is an InvalidArgument naming the file, the record and what differs; a file
+/// recorded for another fluid key is refused before any record is read.
 #pragma once
 
 #include <cstdint>
@@ -36,7 +38,7 @@ namespace sadr::orchestrator {
 
 /// The file's name in an ensemble's output folder.
 inline constexpr std::string_view kFlowTapeName = "flow_replay.bin";
-inline constexpr std::uint32_t kFlowTapeVersion = 2;
+inline constexpr std::uint32_t kFlowTapeVersion = 3;  ///< 3: the header holds the fluid key
 
 /// Which FluidService call a record holds (service_interfaces.hpp).
 enum class FlowCall : std::uint8_t { kAdvance = 1, kGeometry = 2, kFrame = 3 };
@@ -63,7 +65,7 @@ struct FlowRecord {
 };
 
 struct FlowTapeHeader {
-  std::string scene_hash;  ///< scene_meaning_hash() of the recorded scene
+  std::string fluid_key;  ///< fluid_key() of the recorded scene (scene_messages.hpp)
   std::uint64_t particles = 0;
   std::uint64_t records = 0;
 };
@@ -77,7 +79,7 @@ struct FlowTapePosition {
 class FlowTapeWriter {
  public:
   /// Creates `<path>.partial` (replacing one left by an earlier attempt).
-  FlowTapeWriter(std::filesystem::path path, std::string scene_hash, std::uint64_t particles);
+  FlowTapeWriter(std::filesystem::path path, std::string fluid_key, std::uint64_t particles);
   ~FlowTapeWriter();  ///< unfinished: removes the partial file
   FlowTapeWriter(const FlowTapeWriter&) = delete;
   FlowTapeWriter& operator=(const FlowTapeWriter&) = delete;
@@ -97,8 +99,8 @@ class FlowTapeWriter {
 
 class FlowTapeReader {
  public:
-  /// Opens and checks the header; `expected_scene_hash` (unless empty) must match.
-  FlowTapeReader(std::filesystem::path path, const std::string& expected_scene_hash);
+  /// Opens and checks the header; `expected_fluid_key` (unless empty) must match.
+  FlowTapeReader(std::filesystem::path path, const std::string& expected_fluid_key);
 
   [[nodiscard]] const FlowTapeHeader& header() const { return header_; }
   [[nodiscard]] FlowTapePosition position() const { return pos_; }
