@@ -507,6 +507,7 @@ void read_species(SceneContext& ctx, const Field& root) {
           {"diffusivity", "length^2/time"}};
       r.report(f, problems, units);
       warn_inert_wall_molecules(ctx, f, sp);
+      warn_absorbing_walls(ctx, f, sp);
       ctx.scene.species.push_back(std::move(sp));
     }
   }

@@ -114,6 +114,9 @@ void read_time_and_output(SceneContext& ctx, const Field& root);
 /// A reaction whose regions and kinds select no particle.
 void warn_reaction_selects_nothing(SceneContext& ctx, const Field& f, const Reaction& rx);
 /// Molecules that start on wall particles without a boundary condition for their species.
+/// A stochastic species with a `dirichlet` boundary whose other wall particles have no
+/// dirichlet or free condition: the SSA makes them absorbing reservoirs (C = 0).
+void warn_absorbing_walls(SceneContext& ctx, const Field& f, const Species& sp);
 void warn_inert_wall_molecules(SceneContext& ctx, const Field& f, const Species& sp);
 /// A stochastic initial concentration that rounds to 0 molecules in every particle.
 void warn_rounds_to_zero(SceneContext& ctx, const Field& value_field, const Species& sp,

@@ -109,6 +109,37 @@ void warn_inert_wall_molecules(SceneContext& ctx, const Field& f, const Species&
           "exchange with the fluid, or start them in fluid particles");
 }
 
+void warn_absorbing_walls(SceneContext& ctx, const Field& f, const Species& sp) {
+  if (!ctx.particles_ok || !sp.stochastic || !(sp.diffusivity > 0)) return;
+  const ParticleState& p = ctx.scene.particles;
+  std::vector<char> held(p.size(), 0);  // a dirichlet or free condition for this species
+  bool dirichlet = false;
+  for (const auto& b : sp.boundaries) {
+    const bool d = b.condition == BoundaryCondition::kDirichlet;
+    dirichlet = dirichlet || d;
+    if (!d && b.condition != BoundaryCondition::kFree) continue;
+    if (b.region.empty()) return;  // every wall particle
+    if (const Region* rg = ctx.scene.find_region(b.region)) {
+      for (const std::uint32_t i : rg->particles) held[i] = 1;
+    }
+  }
+  if (!dirichlet) return;
+  std::size_t open = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind(i) == ParticleKind::kWall && !held[i]) ++open;
+  }
+  if (open == 0) return;
+  ctx.reader.warning(
+      YamlReader::child(f, "boundaries"),
+      std::to_string(open) + " wall particle(s) have no `dirichlet` or `free` condition for '" +
+          sp.name +
+          "', a stochastic species with a `dirichlet` boundary: in the SSA they are reservoirs "
+          "at C = 0 and absorb every molecule that reaches them, not the no-flux of `condition: "
+          "none`; give them `condition: free` to close them (they then hold and pass on "
+          "molecules like membrane particles), or `dirichlet` with value 0 to keep them "
+          "absorbing (docs/ssa-core.md, \"Boundaries\")");
+}
+
 void warn_rounds_to_zero(SceneContext& ctx, const Field& value_field, const Species& sp,
                          const Region& rg, double concentration) {
   if (!sp.stochastic || concentration <= 0.0 || rg.particles.empty()) return;
