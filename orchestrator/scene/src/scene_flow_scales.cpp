@@ -287,9 +287,10 @@ void choose_flow_settings(SceneContext& ctx, const Field& root, bool sound_speed
   if (sc.obstacle.empty() || !(sc.drop > 0)) return;
   if (f.open_boundary) {  // its outlet holds rho0: the fluid relaxes to it, the shift is lost
     if (!reference_density_given) {
-      s.chosen.push_back("background pressure: none (a body stands in the flow, but the open "
-                         "boundary's outlet holds the reference density, so the fluid would "
-                         "relax to it)");
+      s.chosen.push_back(
+          "background pressure: none (a body stands in the flow, but the open "
+          "boundary's outlet holds the reference density, so the fluid would "
+          "relax to it)");
     }
     return;
   }
