@@ -89,7 +89,7 @@ std::string find_obstacle(const Scene& s, double dx) {
   };
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
   for (const auto i : walls) grid[key(i, {0, 0, 0})].push_back(i);
-  std::unordered_map<std::uint32_t, bool> seen;
+  std::vector<char> seen(p.size(), 0);
   auto touches_face = [&](std::uint32_t i) {
     for (int a = 0; a < d; ++a) {
       if (s.box.periodic[a]) continue;
@@ -99,9 +99,9 @@ std::string find_obstacle(const Scene& s, double dx) {
     return false;
   };
   for (const auto start : walls) {
-    if (seen.count(start)) continue;
+    if (seen[start]) continue;
     std::vector<std::uint32_t> stack{start};
-    seen[start] = true;
+    seen[start] = 1;
     bool reaches_face = false;
     std::size_t members = 0;
     std::array<double, 3> centre{};
@@ -117,14 +117,14 @@ std::string find_obstacle(const Scene& s, double dx) {
             const auto it = grid.find(key(i, {ox, oy, oz}));
             if (it == grid.end()) continue;
             for (const auto j : it->second) {
-              if (seen.count(j)) continue;
+              if (seen[j]) continue;
               double r2 = 0;
               for (int a = 0; a < d; ++a) {
                 const double dd = p.positions[3 * j + a] - p.positions[3 * i + a];
                 r2 += dd * dd;
               }
               if (r2 < cell * cell) {
-                seen[j] = true;
+                seen[j] = 1;
                 stack.push_back(j);
               }
             }
