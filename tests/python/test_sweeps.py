@@ -114,3 +114,42 @@ def test_dask_sweep_equals_local(tmp_path, local_sweep):
     _, mismatch, errors = filecmp.cmpfiles(a, b, names, shallow=False)
     assert not mismatch and not errors, mismatch + errors
     assert sw.table().equals(local_sweep.table())
+
+
+def test_dask_sweep_replays_one_flow(tmp_path):
+    """A sweep over a stochastic diffusivity of a moving fluid, its runs Dask tasks:
+    every run replays the one recorded flow (one tape in flows/, each run's
+    result.json names the same fluid key, one run recorded it), and the frames,
+    aggregates and observables equal, byte for byte, those of the local executor
+    with every run stepping its own fluid (--no-flow-replay)."""
+    scene = sadr.Scene.load(EXAMPLES / "poiseuille_tracer_2d.yaml")
+    scene["time.end"] = 0.2
+    scene["output.every"] = 0.1
+    scene["output.formats"] = ["csv"]
+    scene.write(tmp_path / "scene.yaml")
+    sweep = {"scene": "scene.yaml", "realizations": 2, "seed": 5,
+             "parameters": {"grid": {"species[T].diffusivity": [0.001, 0.004]}},
+             "executor": {"type": "local", "workers": 2}, "keep": "all"}
+    path = tmp_path / "sweep.yaml"
+    path.write_text(yaml.safe_dump(sweep, sort_keys=False))
+    own = tmp_path / "own"
+    sadr.run_cli(["sweep", path, "-o", own, "-q", "--no-flow-replay"])
+    with LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        sw = sadr.dask_runner.run_sweep(path, tmp_path / "dask", client)
+    assert (sw.points["state"] == "done").all()
+    points = sw.manifest["points"]
+    assert all(p["flow_replay"]["on"] for p in points), [p["flow_replay"] for p in points]
+    assert len({p["flow_replay"]["fluid_key"] for p in points}) == 1
+    tapes = sorted(sw.path.glob("flows/*.bin"))
+    assert len(tapes) == 1, tapes
+    results = [yaml.safe_load((sw.path / r["dir"] / "result.json").read_text())
+               for r in sw.manifest["runs"]]
+    assert len(results) == 4
+    assert {r["fluid_key"] for r in results} == {points[0]["flow_replay"]["fluid_key"]}
+    assert sum(bool(r["flow_recorded"]) for r in results) == 1
+    names = sorted(str(p.relative_to(own)) for p in own.glob("points/*/*.csv"))
+    names += sorted(str(p.relative_to(own)) for p in own.glob("runs/*/frames/*.csv"))
+    assert len(names) >= 4 * 3
+    _, mismatch, errors = filecmp.cmpfiles(own, sw.path, names, shallow=False)
+    assert not mismatch and not errors, mismatch + errors
