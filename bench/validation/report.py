@@ -56,6 +56,7 @@ import coupled_tracer  # noqa: E402
 import poiseuille_example  # noqa: E402
 import poiseuille_sweep  # noqa: E402
 import splitting_order  # noqa: E402
+import paper_cost  # noqa: E402
 import table1_floor  # noqa: E402
 import wp_plots  # noqa: E402
 
@@ -63,7 +64,17 @@ import wp_plots  # noqa: E402
 PAPER_SDPD = {17: 1.856e-4, 33: 1.698e-4, 65: 2.325e-4}
 PAPER_SSA = {17: 7.285e-4, 33: 5.334e-4, 65: 6.644e-4}  # 100 realizations
 PAPER_SSA_ONE = {17: 3.5e-3, 33: 2.6e-3, 65: 1.4e-3}  # one realization
-PAPER_COST_ONE = {17: 0.72, 33: 1.22, 65: 6.08}  # s, one realization of 10,000 steps
+# s, one realization of 10,000 steps, measured on another machine of this type months ago: used
+# only when the run is not given the paper code (--paper-lmp, --paper-decks), and then says so.
+PAPER_COST_ONE = {17: 0.72, 33: 1.22, 65: 6.08}
+
+
+def cost_one(d):
+    """The paper code's cost per realization: measured in this run (paper_cost.py) or the constant."""
+    measured = d.get("paper_cost")
+    if measured:
+        return {int(n): r["paper_median_s"] for n, r in measured.items()}
+    return PAPER_COST_ONE
 
 # Table 1 SSA: CPU seconds per realization to t = 1 (sadr + services, os.wait4). N = 17:
 # the --quick run at 1c5522f; N = 33 / 65: R = 1-2 runs on 2026-12-01 at load ~13 on 2 cores
@@ -178,7 +189,16 @@ def main():
                     help="with --quick or --full: run only Table 1's SSA part (the ensembles, tau "
                          "and table1_floor.py) and take every other section from OUT/validation/"
                          "data.json of the last whole run, which the header names")
+    ap.add_argument("--paper-lmp", default="",
+                    help="the paper code's LAMMPS executable: measure its cost per realization "
+                         "in this run, interleaved with ours (paper_cost.py)")
+    ap.add_argument("--paper-decks", default="",
+                    help="with --paper-lmp: its examples/ssa_tsdpd/cylinder_annihilation/"
+                         "temporal_analysis folder")
+    ap.add_argument("--paper-pairs", type=int, default=5)
     a = ap.parse_args()
+    if bool(a.paper_lmp) != bool(a.paper_decks):
+        ap.error("--paper-lmp and --paper-decks go together")
     only = set(filter(None, a.only.split(",")))
     build = pathlib.Path(a.build).resolve()
     out = pathlib.Path(a.out)
@@ -244,7 +264,7 @@ def main():
     data["skips"] = json.loads(skip_json.read_text()) if skip_json.exists() else None
 
     step("plots")
-    plots = wp_plots.make_all(data, figs, PAPER_SDPD, PAPER_SSA, PAPER_SSA_ONE, PAPER_COST_ONE)
+    plots = wp_plots.make_all(data, figs, PAPER_SDPD, PAPER_SSA, PAPER_SSA_ONE, cost_one(data))
     (work / "data.json").write_text(json.dumps(data, indent=1, default=str))
     elapsed = (datetime.datetime.now(datetime.timezone.utc) - started).total_seconds()
     write_markdown(out / "validation-report.md", data, plots, cmd, rev, started, elapsed, build, quick)
@@ -276,6 +296,13 @@ def table1_ssa(a, data, sadr, quick, step):
     step("Table 1 SSA: fixed cost per realization, events, profile (table1_floor.py)")
     data["table1_split"] = table1_floor.measure(sadr)
 
+    if a.paper_lmp:
+        step(f"Table 1: the paper code's cost, {a.paper_pairs} pairs beside ours (paper_cost.py)")
+        data["paper_cost"] = paper_cost.measure(pathlib.Path(a.paper_lmp).resolve(),
+                                                a.paper_decks, sadr, pairs=a.paper_pairs)
+    else:
+        data.pop("paper_cost", None)
+
 
 def table1_only(a, data, figs, sadr, rev, cmd, started, build, quick, step):
     """--table1: Table 1's SSA part now, the other sections from the last whole run.
@@ -291,7 +318,7 @@ def table1_only(a, data, figs, sadr, rev, cmd, started, build, quick, step):
     if not a.render:
         table1_ssa(a, data, sadr, quick, step)
     step("plots")
-    plots = wp_plots.make_all(data, figs, PAPER_SDPD, PAPER_SSA, PAPER_SSA_ONE, PAPER_COST_ONE)
+    plots = wp_plots.make_all(data, figs, PAPER_SDPD, PAPER_SSA, PAPER_SSA_ONE, cost_one(data))
     elapsed = (datetime.datetime.now(datetime.timezone.utc) - started).total_seconds()
     if not a.render:
         data["table1_run"] = {"command": cmd + " --table1", "commit": rev,
@@ -309,7 +336,7 @@ def table1_only(a, data, figs, sadr, rev, cmd, started, build, quick, step):
 def write_markdown(path, d, plots, cmd, rev, started, elapsed, build, quick):
     import wp_tables  # the markdown, kept apart from the running
     path.write_text(wp_tables.render(d, plots, cmd, rev, started, elapsed, build, quick,
-                                     PAPER_SDPD, PAPER_SSA, PAPER_SSA_ONE, PAPER_COST_ONE, GTESTS))
+                                     PAPER_SDPD, PAPER_SSA, PAPER_SSA_ONE, cost_one(d), GTESTS))
 
 
 if __name__ == "__main__":

@@ -47,6 +47,17 @@ def table1_rows(d, paper_sdpd, paper_ssa, rev):
     return rows
 
 
+def paper_cost_source(d):
+    """Where the paper code's cost comes from: this run (paper_cost.py) or the constant."""
+    runs = d.get("paper_cost")
+    if not runs:
+        return ", measured on another machine of this type, not in this run"
+    first = next(iter(runs.values()))
+    pairs = len(first["paper_cpu_s"])
+    return (f", measured in this run: {pairs} pairs interleaved with our run of the same "
+            f"problem, `{first['paper_cmd']}`, bench/validation/paper_cost.py")
+
+
 def render(d, plots, cmd, rev, started, elapsed, build, quick, paper_sdpd, paper_ssa,
            paper_ssa_one, paper_cost_one, gtests):
     out_dir = plots["table1"].parent.parent
@@ -93,8 +104,9 @@ def render(d, plots, cmd, rev, started, elapsed, build, quick, paper_sdpd, paper
     w("Ours: deterministic transport (static backend, N_b = 1e3, t = 1 s, three sub-steps; "
       f"`{d['sweep']['command']}`) and the NSM (error of the mean of the first r of R "
       "realizations, cost r/R of the ensemble's CPU time). Paper: its Table 1 errors at the cost "
-      "of its code on this machine type (one realization of 10,000 steps: "
-      + " / ".join(f"{paper_cost_one[n]} s" for n in (17, 33, 65))
+      "of its code (one realization of 10,000 steps: "
+      + " / ".join(f"{paper_cost_one[n]:.3g} s" for n in (17, 33, 65))
+      + paper_cost_source(d)
       + " for N = 17 / 33 / 65; 100 realizations = 100x), and its single-realization SSA errors "
       + " / ".join(e(paper_ssa_one[n]) for n in (17, 33, 65)) + ".\n")
     w("Cost at which we reach the paper's error (at equal error; for "
