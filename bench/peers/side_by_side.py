@@ -10,12 +10,13 @@
 Timing (default): interleaved pairs ours / peer (the order alternates from pair to pair),
 CPU time of one thread (OMP_NUM_THREADS=1), on the same workloads:
   * SDPD, 4 cases (3D/2D, ~1e4/~1e5 particles): our `fluid_bench --case` against LAMMPS
-    `pair_style sdpd/taitwater/isothermal` + `fix sph` on the same periodic lattice at rest
+    `pair_style sdpd/taitwater/isothermal` (package DPD-SMOOTH) + `atom_style sph` and
+    `fix sph` (package SPH) on the same periodic lattice at rest
     (dx = 1, h = 3, c0 = 10, rho0 = 1, eta = 1, k_B T = 0.01, dt = 0.02). Particle-steps per
     CPU-second; our step is a predictor-corrector step (two force evaluations), LAMMPS'
     Verlet step one.
   * tDPD, 1 species, 10648 particles: our `fluid_tdpd_bench --small` (its 1-species row)
-    against LAMMPS `pair_style tdpd` + `fix mvv/tdpd` (rho = 4, r_c = r_cc = 1.58,
+    against LAMMPS `pair_style tdpd` + `fix mvv/tdpd` (package DPD-MESO) (rho = 4, r_c = r_cc = 1.58,
     a = 18.75, gamma = 4.5, s1 = 0.41, kappa = 0.5, no random flux, power_c = 2, lambda = 0.5,
     k_B T = 1, dt = 0.01; 20 warm-up steps, 100 timed). LAMMPS' pair loop draws the
     random-flux Gaussian even at epsilon = 0 (its code as it is); its concentrations start
