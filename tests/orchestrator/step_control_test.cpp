@@ -50,7 +50,8 @@ TEST(InputError, TrapezoidAndMidpointUseTheSecondDerivative) {
     InputTrack track;
     track.rule = rule;
     accept_sample(track, sample(0.0, {0.0}));
-    EXPECT_FALSE(input_error(track, sample(0.1, {0.01}), 0.1, absolute(1.0)));  // one increment
+    // One sample before: the first-order bound, half the change.
+    EXPECT_DOUBLE_EQ(*input_error(track, sample(0.1, {0.01}), 0.1, absolute(1.0)), 0.005);
     accept_sample(track, sample(0.1, {0.01}));
     const auto e = input_error(track, sample(0.3, {0.09}), 0.2, absolute(1.0));
     ASSERT_TRUE(e);

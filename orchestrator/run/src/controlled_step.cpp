@@ -31,13 +31,11 @@ const std::vector<double>& values_of(const SpeciesConcentrations& c, const std::
 }
 }  // namespace
 
-/// The inputs at the start of the run (t_): the copy numbers, and the
-/// concentrations a Lie SSA stage reads (a Strang one samples them at mid-step).
+/// The inputs at the start of the run (t_): the copy numbers and the frozen concentrations.
 std::vector<InputSample> SplittingLoop::start_samples() {
   std::vector<InputSample> out(tracks_.size());
-  const bool need_frozen = std::any_of(tracks_.begin(), tracks_.end(), [](const InputTrack& t) {
-    return !t.counts && t.rule == HoldRule::kEnd;
-  });
+  const bool need_frozen =
+      std::any_of(tracks_.begin(), tracks_.end(), [](const InputTrack& t) { return !t.counts; });
   const SpeciesConcentrations frozen =
       need_frozen ? fluid_->frame(s_.frozen).concentrations : SpeciesConcentrations{};
   const SpeciesCounts counts = s_.back_transfer.empty() ? SpeciesCounts{} : back_transfer_counts();
@@ -75,9 +73,8 @@ std::vector<InputSample> SplittingLoop::end_samples(const CouplingStep& cs, std:
 
 CouplingStep SplittingLoop::controlled_step(CouplingStep cs) {
   const StepTolerance& tol = control_->tolerance();
-  if (std::any_of(tracks_.begin(), tracks_.end(), [](const InputTrack& t) {
-        return !t.has_value && (t.counts || t.rule == HoldRule::kEnd);
-      })) {
+  if (std::any_of(tracks_.begin(), tracks_.end(),
+                  [](const InputTrack& t) { return !t.has_value; })) {
     auto start = start_samples();
     for (std::size_t k = 0; k < tracks_.size(); ++k) {
       if (!start[k].value.empty()) accept_sample(tracks_[k], std::move(start[k]));

@@ -25,9 +25,10 @@ std::optional<double> input_error(const InputTrack& track, const InputSample& sa
   if (!track.has_value || track.value.size() != n) return std::nullopt;
   // The held value minus the value along the step, averaged over the step, per
   // particle: v_i = a (y_i - prev_i) - b increment_i; `noise` bounds sum_i Var(v_i).
+  // Second order rules before a second difference exists (the first step): the
+  // first-order bound, half the change (a monotone input never strays further).
   double a = 0.5, b = 0.0;
-  if (track.rule != HoldRule::kEnd) {
-    if (!track.has_increment || track.increment.size() != n) return std::nullopt;
+  if (track.rule != HoldRule::kEnd && track.has_increment && track.increment.size() == n) {
     // |y''| from the last three samples, times h^2/12 (trapezoid) or h^2/24 (midpoint).
     const double c = track.rule == HoldRule::kTrapezoid ? 1.0 / 12.0 : 1.0 / 24.0;
     const double s = sample.time - track.time, sp = track.spacing;
