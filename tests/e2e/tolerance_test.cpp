@@ -260,6 +260,110 @@ TEST(ToleranceResume, StoppedAndResumedGivesIdenticalFrames) {
   }
 }
 
+/// The linear hybrid chain of hybrid_e2e_test.cpp (static particles, V = 1, no
+/// diffusion: independent reactors): A birth-death (stochastic), B deterministic with
+/// dB/dt = k A - d B (the fluid reads A), C stochastic born at kc B (the SSA reads B,
+/// frozen). Both crossings are watched by the controller.
+std::string hybrid_scene(const std::string& splitting, int particles, const std::string& outputs) {
+  return "name: hybrid_tolerance\n"
+         "dimension: 1\n"
+         "box: {lower: [0.0], upper: [" +
+         std::to_string(particles) +
+         ".0], periodic: [true]}\n"
+         "particles: {spacing: 1.0}\n"
+         "fluid: {backend: static, h_over_dx: 2.0, max_time_step: 0.005}\n"
+         "parameters: {k: 1.0, kc: 0.5}\n"
+         "species:\n"
+         "  - {name: A, diffusivity: 0}\n"
+         "  - {name: B, stochastic: false, diffusivity: 0}\n"
+         "  - {name: C, diffusivity: 0}\n"
+         "reactions:\n"
+         "  - {name: a_birth, equation: \"0 -> A\", rate: 20.0}\n"
+         "  - {name: a_death, equation: \"A -> 0\", rate: 1.0}\n"
+         "  - {name: b_birth, equation: \"0 -> B\", law: {type: expression, expression: \"k*A\"}}\n"
+         "  - {name: b_death, equation: \"B -> 0\", rate: 2.0}\n"
+         "  - {name: c_birth, equation: \"0 -> C\", law: {type: expression, expression: "
+         "\"kc*B\"}}\n"
+         "time: {coupling_step: 0.1, end: 2.0, splitting: " +
+         splitting +
+         ", tolerance: {relative: 1e-2, absolute: 0.05}}\n"
+         "output: {times: " +
+         outputs +
+         ", formats: [csv]}\n"
+         "seed: 17\n";
+}
+
+// The hybrid chain with a tolerance (first step 0.1): E[A], E[B], E[C] at T = 2 against
+// their closed forms, z-tests over 2000 independent particles at |z| < 4.4 (two-sided
+// 1.1e-5 each, 3.3e-5 for the three), in far fewer steps than the fixed 0.005 of
+// hybrid_e2e_test.cpp (400 steps).
+TEST(ToleranceHybrid, TheLinearChainMatchesItsMeans) {
+  const double k1 = 20, d1 = 1, k = 1, d = 2, kc = 0.5, T = 2;
+  const fs::path dir = scratch("tolerance-hybrid");
+  const fs::path sc = write_scene(dir, hybrid_scene("lie", 2000, "[2.0]"));
+  ASSERT_EQ(
+      run(bin("sadr") + " run " + sc.string() + " -o " + (dir / "out").string(), dir / "run.log"),
+      0)
+      << read_file(dir / "run.log");
+  const std::string log = read_file(dir / "run.log");
+  EXPECT_NE(log.find("coupling step: error-controlled, tolerance relative 0.01, absolute 0.05"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("error-controlled step (time.tolerance):"), std::string::npos) << log;
+  const CsvFrame f = read_csv(frames(dir / "out").back());
+  const double m = k1 / d1;
+  const double eb =
+      k * m * ((1 - std::exp(-d * T)) / d - (std::exp(-d1 * T) - std::exp(-d * T)) / (d - d1));
+  const double int_b = k * m *
+                       ((T - (1 - std::exp(-d * T)) / d) / d -
+                        ((1 - std::exp(-d1 * T)) / d1 - (1 - std::exp(-d * T)) / d) / (d - d1));
+  const struct {
+    const char* name;
+    double exact;
+  } rows[] = {{"A", m * (1 - std::exp(-d1 * T))}, {"B", eb}, {"C", kc * int_b}};
+  for (const auto& r : rows) {
+    const auto& x = f.column(r.name);
+    double mean = 0, s2 = 0;
+    for (double v : x) mean += v;
+    mean /= static_cast<double>(x.size());
+    for (double v : x) s2 += (v - mean) * (v - mean);
+    const double sd =
+        std::sqrt(s2 / static_cast<double>(x.size() - 1) / static_cast<double>(x.size()));
+    const double z = (mean - r.exact) / sd;
+    std::printf("hybrid E[%s](T=2): %.5f +- %.5f, exact %.5f, z = %.2f\n", r.name, mean, sd,
+                r.exact, z);
+    EXPECT_LT(std::fabs(z), 4.4) << r.name;
+  }
+  const auto j = nlohmann::json::parse(read_file(dir / "out" / "run.json"));
+  const auto& sc_json = j["step_control"];
+  std::printf("hybrid: %s\n", sc_json.dump().c_str());
+  EXPECT_EQ(sc_json["over_tolerance"].get<long>(), 0);
+  EXPECT_LT(sc_json["accepted"].get<long>() + sc_json["rejected"].get<long>(), 400);
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+// Stop and resume with both crossings (the frozen concentrations' history in the checkpoint).
+TEST(ToleranceHybrid, StoppedAndResumedGivesIdenticalFrames) {
+  for (const char* splitting : {"lie", "strang"}) {
+    const fs::path d = scratch(std::string("tolerance-hybrid-resume-") + splitting);
+    const fs::path sc = write_scene(d, hybrid_scene(splitting, 200, "[0.5, 1.0, 2.0]"));
+    const std::string sadr = bin("sadr") + " ";
+    ASSERT_EQ(run(sadr + "run " + sc.string() + " -q -o " + (d / "full").string(), d / "a.log"), 0)
+        << read_file(d / "a.log");
+    ASSERT_EQ(run(sadr + "run " + sc.string() + " -q --stop-at 0.7 -o " + (d / "half").string(),
+                  d / "b.log"),
+              0)
+        << read_file(d / "b.log");
+    ASSERT_EQ(run(sadr + "resume " + (d / "half" / "checkpoint").string() + " -q", d / "c.log"), 0)
+        << read_file(d / "c.log");
+    expect_same_frames(d / "full", d / "half");
+    const auto a = nlohmann::json::parse(read_file(d / "full" / "run.json"));
+    const auto b = nlohmann::json::parse(read_file(d / "half" / "run.json"));
+    EXPECT_EQ(a["step_control"], b["step_control"]) << splitting;
+    if (!HasFailure()) fs::remove_all(d);
+  }
+}
+
 #ifdef SADR_TOLERANCE_VALIDATION
 // The sweep: for each case and splitting, tolerances 3000, 1000, 300 molecules per
 // particle: E below each (4.89 sigma) and falling with it (each step down by at least
