@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "sadr/orchestrator/scene_loader.hpp"
 #include "sadr/orchestrator/step_control.hpp"
 
 namespace sadr::orchestrator {
@@ -177,6 +178,34 @@ TEST(StepController, StateRoundTripsExactly) {
   nlohmann::json bad = a.state();
   bad["tau"] = 5.0;  // beyond max_step
   EXPECT_THROW(b.set_state(bad), std::exception);
+}
+
+Scene scene_with_time(const std::string& time) {
+  return parse_scene(
+      "dimension: 1\n"
+      "box: {lower: [0.0], upper: [1.0], periodic: [true]}\n"
+      "particles: {spacing: 0.125}\n"
+      "fluid: {backend: static, h_over_dx: 2.0}\n"
+      "species:\n  - {name: A, diffusivity: 0.1}\n"
+      "time: " +
+          time + "\n",
+      "scene.yaml");
+}
+
+TEST(SceneTolerance, NumberMapAndAbsence) {
+  EXPECT_FALSE(scene_with_time("{coupling_step: 0.1, end: 1.0}").time.tolerance);
+  const auto a = scene_with_time("{coupling_step: 0.1, end: 1.0, tolerance: 1e-3}").time.tolerance;
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a->relative, 1e-3);
+  EXPECT_EQ(a->absolute, 0.0);
+  EXPECT_EQ(a->max_step, 0.1);  // the first step
+  const auto b =
+      scene_with_time("{coupling_step: 0.1, end: 1.0, tolerance: {absolute: 5, max_step: 0.4}}")
+          .time.tolerance;
+  ASSERT_TRUE(b);
+  EXPECT_EQ(b->relative, 0.0);
+  EXPECT_EQ(b->absolute, 5.0);
+  EXPECT_EQ(b->max_step, 0.4);
 }
 
 }  // namespace
