@@ -113,11 +113,17 @@ TEST(StepController, RejectsShrinksGrowsAndClamps) {
   EXPECT_DOUBLE_EQ(c.min_step(), 1e-4);
   EXPECT_FALSE(c.judge(0.1, 4.0));  // 4 x the tolerance: redo with 0.1 * 0.9 / 4
   EXPECT_NEAR(c.tau(), 0.0225, 1e-15);
-  EXPECT_TRUE(c.judge(0.0225, 0.9));  // at 0.9 of the tolerance: keep the step
+  // An estimate of 0 after a rejection: capped at the rejection's step, the cap
+  // growing by 1.25 per step.
+  EXPECT_TRUE(c.judge(0.0225, 0.0));
   EXPECT_NEAR(c.tau(), 0.0225, 1e-15);
-  EXPECT_TRUE(c.judge(0.0225, 0.0));  // no error: grow by at most 5
-  EXPECT_NEAR(c.tau(), 0.1125, 1e-15);
-  EXPECT_TRUE(c.judge(0.1125, 0.0));
+  EXPECT_TRUE(c.judge(0.0225, 0.0));
+  EXPECT_NEAR(c.tau(), 0.0225 * 1.25, 1e-15);
+  EXPECT_TRUE(c.judge(c.tau(), 0.9));  // at 0.9 of the tolerance: keep the step; cap gone
+  EXPECT_NEAR(c.tau(), 0.0225 * 1.25, 1e-15);
+  EXPECT_TRUE(c.judge(c.tau(), 0.0));  // no error: grow by at most 5
+  EXPECT_NEAR(c.tau(), 0.0225 * 1.25 * 5, 1e-15);
+  EXPECT_TRUE(c.judge(c.tau(), 0.0));
   EXPECT_DOUBLE_EQ(c.tau(), 0.4);    // clamped at max_step
   EXPECT_TRUE(c.judge(0.01, 0.01));  // a short landing step with room: tau kept
   EXPECT_DOUBLE_EQ(c.tau(), 0.4);
@@ -129,7 +135,7 @@ TEST(StepController, RejectsShrinksGrowsAndClamps) {
   EXPECT_FALSE(s.judge(0.1, 4.0));
   EXPECT_NEAR(s.tau(), 0.1 * 0.9 / 2.0, 1e-15);
   const auto& st = c.stats();
-  EXPECT_EQ(st.accepted, 5u);
+  EXPECT_EQ(st.accepted, 7u);
   EXPECT_EQ(st.rejected, 2u);
   EXPECT_EQ(st.unestimated, 1u);
   EXPECT_DOUBLE_EQ(st.smallest, 0.01);

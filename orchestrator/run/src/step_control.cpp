@@ -80,6 +80,7 @@ bool StepController::judge(double h, std::optional<double> err) {
   if (err && *err > 1.0 && !at_min) {
     const double fac = kSafety * std::pow(1.0 / *err, 1.0 / order_);
     tau_ = std::max(min_, h * std::max(kFacMin, fac));
+    cap_ = tau_;  // grows back by kCapGrowth per accepted step (header)
     ++stats_.rejected;
     return false;
   }
@@ -98,12 +99,20 @@ bool StepController::judge(double h, std::optional<double> err) {
   double next = h * fac;
   // A step shortened to land on an output time says the old tau may grow, not shrink.
   if (h < tau_ && fac >= 1.0) next = std::max(next, tau_);
+  if (e > 0.0) {
+    cap_ = 0.0;  // a measured error: the rejection's memory is superseded
+  } else if (cap_ > 0.0) {
+    next = std::min(next, cap_);
+    cap_ *= kCapGrowth;
+    if (cap_ >= tol_.max_step) cap_ = 0.0;
+  }
   tau_ = std::clamp(next, min_, tol_.max_step);
   return true;
 }
 
 nlohmann::json StepController::state() const {
   return {{"tau", tau_},
+          {"cap", cap_},
           {"accepted", stats_.accepted},
           {"rejected", stats_.rejected},
           {"unestimated", stats_.unestimated},
@@ -121,6 +130,7 @@ void StepController::set_state(const nlohmann::json& j) {
                             format_value(min_) + ", " + format_value(tol_.max_step) + "]");
     }
     tau_ = tau;
+    cap_ = j.at("cap").get<double>();
     stats_.accepted = j.at("accepted").get<std::uint64_t>();
     stats_.rejected = j.at("rejected").get<std::uint64_t>();
     stats_.unestimated = j.at("unestimated").get<std::uint64_t>();

@@ -73,6 +73,11 @@ class StepController {
   /// Smallest step: this fraction of the first step (docs/method.md section 1b).
   static constexpr double kMinStepFraction = 1e-3;
   static constexpr double kSafety = 0.9, kFacMin = 0.2, kFacMax = 5.0;
+  /// After a rejection, while the estimates read 0 (an error below the sampling noise),
+  /// the step is capped at the one the rejection chose and the cap grows by this factor
+  /// per accepted step (until max_step or an estimate above 0): otherwise a 0 would grow
+  /// the step 5x back into the rejected one, again and again.
+  static constexpr double kCapGrowth = 1.25;
 
   /// @param order 1 (Lie) or 2 (Strang): the error per unit time is O(tau^order)
   StepController(const StepTolerance& tol, double first_step, int order);
@@ -98,6 +103,7 @@ class StepController {
   StepTolerance tol_;
   int order_ = 1;
   double tau_ = 0.0, min_ = 0.0;
+  double cap_ = 0.0;  ///< largest next step after a rejection (0: none)
   StepControlStats stats_;
 };
 
