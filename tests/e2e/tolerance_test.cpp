@@ -173,6 +173,7 @@ Outcome check_case(Case c, double atol, const std::string& name) {
   return o;
 }
 
+#ifndef SADR_TOLERANCE_VALIDATION
 class ToleranceDecay : public ::testing::TestWithParam<const char*> {};
 
 // Molecules decaying: the error per unit time is h/2 |X'| (Lie) or h^2/12 |X''|
@@ -229,7 +230,8 @@ TEST(ToleranceNoSplittingError, GrowsToTheBoundAndRejectsNothing) {
 }
 
 // A run stopped and resumed gives the frames of the run done in one go, with the
-// controller's step, counters and input history carried in the checkpoint.
+// controller's step, counters and input history carried in the checkpoint; so does a
+// run with the services in the sadr process.
 TEST(ToleranceResume, StoppedAndResumedGivesIdenticalFrames) {
   for (const char* splitting : {"lie", "strang"}) {
     Case c;
@@ -250,9 +252,17 @@ TEST(ToleranceResume, StoppedAndResumedGivesIdenticalFrames) {
     ASSERT_EQ(run(sadr + "resume " + (d / "half" / "checkpoint").string() + " -q", d / "c.log"), 0)
         << read_file(d / "c.log");
     expect_same_frames(d / "full", d / "half");
+    // Services in the sadr process (--embedded): the same steps and frames.
+    ASSERT_EQ(
+        run(sadr + "run " + sc.string() + " -q --embedded -o " + (d / "emb").string(), d / "e.log"),
+        0)
+        << read_file(d / "e.log");
+    expect_same_frames(d / "full", d / "emb");
     const auto a = nlohmann::json::parse(read_file(d / "full" / "run.json"));
     const auto b = nlohmann::json::parse(read_file(d / "half" / "run.json"));
+    const auto e = nlohmann::json::parse(read_file(d / "emb" / "run.json"));
     EXPECT_EQ(a["step_control"], b["step_control"]) << splitting;
+    EXPECT_EQ(a["step_control"], e["step_control"]) << splitting;
     EXPECT_EQ(a["steps"], b["steps"]) << splitting;
     EXPECT_GT(a["step_control"]["rejected"].get<long>() + a["steps"].get<long>(), 10) << splitting;
     std::printf("%s resume: %s\n", splitting, a["step_control"].dump().c_str());
@@ -364,7 +374,7 @@ TEST(ToleranceHybrid, StoppedAndResumedGivesIdenticalFrames) {
   }
 }
 
-#ifdef SADR_TOLERANCE_VALIDATION
+#else
 // The sweep: for each case and splitting, tolerances 3000, 1000, 300 molecules per
 // particle: E below each (4.89 sigma) and falling with it (each step down by at least
 // 0, less 4.89 sigma sqrt 2 of noise: false-failure rate 5e-7 per pair).
