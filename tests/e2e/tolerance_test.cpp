@@ -186,7 +186,9 @@ TEST_P(ToleranceDecay, ErrorBelowTheToleranceAndNotFarBelow) {
   const double atol = 300.0;
   const Outcome o = check_case(c, atol, std::string("decay-") + GetParam());
   ASSERT_TRUE(o.ok);
-  EXPECT_GT(o.e, 0.3 * atol) << "far below the tolerance: steps wasted";
+  // Measured E / atol 0.89 (Lie), 0.60 (Strang); 0.15 atol is 4.1 sigma_E below
+  // Strang's (false-failure rate 2e-5 one-sided), 6.7 below Lie's.
+  EXPECT_GT(o.e, 0.15 * atol) << "far below the tolerance: steps wasted";
 }
 INSTANTIATE_TEST_SUITE_P(LieAndStrang, ToleranceDecay, ::testing::Values("lie", "strang"));
 
