@@ -194,7 +194,9 @@ INSTANTIATE_TEST_SUITE_P(LieAndStrang, ToleranceDecay, ::testing::Values("lie", 
 
 // Relaxation to a steady state (birth-death, 312500 -> 31250 per particle, gamma = 2,
 // T = 5): the input changes fast at first and not at all later, so the
-// controlled steps grow while a fixed step must resolve the start.
+// controlled steps grow while a fixed step must resolve the start. Measured 528 trial
+// steps against 732 fixed ones of the same E; the fixed count goes as 1 / E, so the
+// assertion fails only if E is 4.7 sigma_E above its value (false-failure rate ~1e-6).
 TEST(ToleranceRelaxation, FewerStepsThanTheCheapestFixedStep) {
   Case c;
   c.birth = 62500.0;
@@ -412,7 +414,7 @@ TEST(ToleranceSweep, ErrorMonotoneInTheToleranceAndBelowIt) {
 // events across calls and a rejection restores its generator), so the mean of B at T
 // differs between runs by splitting error only, measured against steps of 0.001. Each
 // particle's drift of A over a step is below its noise and only the drift of the mean
-// is seen, beyond four standard deviations of its noise: the error falls with the
+// is seen, beyond five standard deviations of its noise: the error falls with the
 // tolerance (asserted: never rises, a deterministic comparison) but not as far as the
 // tolerance asks (reported).
 TEST(ToleranceSweep, FewMoleculesTheErrorFallsToTheNoiseFloor) {
@@ -441,7 +443,8 @@ seed: 29
         run(bin("sadr") + " run " + sc.string() + " -q -o " + (d / "out").string(), d / "run.log"),
         0)
         << read_file(d / "run.log");
-    const auto& b = read_csv(frames(d / "out").back()).column("B");
+    const CsvFrame f = read_csv(frames(d / "out").back());
+    const auto& b = f.column("B");
     double m = 0;
     for (double v : b) m += v;
     if (control) {

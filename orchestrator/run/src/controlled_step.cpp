@@ -126,7 +126,7 @@ CouplingStep SplittingLoop::controlled_step(CouplingStep cs) {
     has_counts_ = had_counts;
     stage_forces_.clear();
     last_frozen_.clear();
-    const auto next = next_coupling_step(t_, control_->tau(), s_.t_end, s_.output_times);
+    const auto next = next_controlled_step(t_, control_->tau(), s_.t_end, s_.output_times);
     if (!next) throw Error(StatusCode::kInternal, "step control: no step left after a rejection");
     cs = *next;
   }

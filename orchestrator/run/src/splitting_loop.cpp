@@ -155,7 +155,6 @@ void SplittingLoop::resume_at(double t, std::uint64_t steps) {
 bool SplittingLoop::run(const LoopHooks& hooks) {
   const auto& outputs = s_.output_times;
   const double tau = s_.tau, t_end = s_.t_end;
-  auto next_tau = [&] { return control_ ? control_->tau() : tau; };
   double next_checkpoint = next_checkpoint_after(t_);
   double last_checkpoint_time = -1.0;
   auto stop_requested = [&] { return hooks.stop_requested && hooks.stop_requested(); };
@@ -163,11 +162,15 @@ bool SplittingLoop::run(const LoopHooks& hooks) {
   // Nothing moves (frame_to_frame): one step per output/checkpoint/stop time.
   const FrameToFrame landings{s_.checkpoint_every, s_.stop_at};
   const FrameToFrame* ftf = s_.frame_to_frame ? &landings : nullptr;
+  auto next_step = [&] {
+    return control_ ? next_controlled_step(t_, control_->tau(), t_end, outputs)
+                    : next_coupling_step(t_, tau, t_end, outputs, ftf);
+  };
   if (overlap_ && !worker_) worker_ = std::make_unique<Worker>();
   bool interrupted = false;
   const auto loop_t0 = Clock::now();
   try {
-    while (auto cs = next_coupling_step(t_, next_tau(), t_end, outputs, ftf)) {
+    while (auto cs = next_step()) {
       // Overlap: leave the SSA stage of this step running while the fluid
       // computes the next one, unless the step ends where both services are
       // needed at once (a frame, a checkpoint, the stop time, the end) or a

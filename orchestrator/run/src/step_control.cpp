@@ -11,6 +11,8 @@
 namespace sadr::orchestrator {
 
 namespace {
+/// Standard deviations of the noise that a change must exceed to count (docs/method.md 1b).
+constexpr double kNoiseSigmas = 5.0;
 double rms(const std::vector<double>& v) {
   double s = 0.0;
   for (const double x : v) s += x * x;
@@ -43,16 +45,17 @@ std::optional<double> input_error(const InputTrack& track, const InputSample& sa
     sum += v * v;
     total += v;
   }
-  // Sampling noise: its bound, and four standard deviations of the sum of n
+  // Sampling noise: its bound, and five standard deviations of the sum of n
   // squared noisy terms about its mean, are not splitting error.
   const double nd = static_cast<double>(n);
   const double noise = a * a * sample.noise + b * b * (b != 0.0 ? track.noise : 0.0);
-  const double inflate = 1.0 + 4.0 * std::sqrt(2.0 / nd);
+  const double inflate = 1.0 + kNoiseSigmas * std::sqrt(2.0 / nd);
   const double rms_drift = std::sqrt(std::max(0.0, sum - inflate * noise) / nd);
   // The drift common to all particles, seen through the noise of their mean (variance
-  // at most noise / n^2) beyond four of its standard deviations: a drift each
+  // at most noise / n^2) beyond five of its standard deviations: a drift each
   // particle's noise hides can still bias every mean.
-  const double mean_drift = std::max(0.0, std::abs(total) / nd - 4.0 * std::sqrt(noise) / nd);
+  const double mean_drift =
+      std::max(0.0, std::abs(total) / nd - kNoiseSigmas * std::sqrt(noise) / nd);
   const double drift = std::max(rms_drift, mean_drift);
   const double scale = tol.absolute + tol.relative * std::max(rms(track.value), rms(sample.value));
   if (!(scale > 0.0)) return drift > 0.0 ? std::numeric_limits<double>::max() : 0.0;
