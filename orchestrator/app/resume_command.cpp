@@ -13,6 +13,7 @@
 #include "sadr/orchestrator/scene_loader.hpp"
 #include "sadr/orchestrator/scene_messages.hpp"
 #include "sadr/orchestrator/scene_override.hpp"
+#include "sadr/orchestrator/step_control.hpp"
 #include "sadr/orchestrator/sweep_manifest.hpp"
 
 namespace sadr::orchestrator {
@@ -55,8 +56,12 @@ int cmd_resume(const ResumeCommandOptions& c) {
                           ", but that file now has hash " + scene.source_hash +
                           " (the scene changed since the run started)");
   }
-  check_manifest_fits_scene(cp.manifest, scene.time.end, scene.time.coupling_step,
-                            scene.output.times.size(), scene.seed, manifest_path.string());
+  // With time.tolerance steps may be as short as the controller's smallest step.
+  const double shortest = scene.time.tolerance
+                              ? scene.time.coupling_step * StepController::kMinStepFraction
+                              : scene.time.coupling_step;
+  check_manifest_fits_scene(cp.manifest, scene.time.end, shortest, scene.output.times.size(),
+                            scene.seed, manifest_path.string());
   Plan plan = make_plan(scene);
   configure_threads_and_overlap(plan, o, 1);
   print_plan(scene, plan, o);

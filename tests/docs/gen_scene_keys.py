@@ -43,6 +43,7 @@ SECTIONS = [
     ("ExpressionKeys", "reactions[].law (type: expression)"),
     ("FluxKeys", "boundary_fluxes[]"),
     ("TimeKeys", "time"),
+    ("ToleranceKeys", "time.tolerance (the map form)"),
     ("OutputKeys", "output"),
     ("ObservableKeys", "output.observables[]"),
 ]

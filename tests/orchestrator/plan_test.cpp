@@ -45,6 +45,32 @@ TEST(Plan, FullHybridRunsEverything) {
   EXPECT_EQ(p.fluid_calls_per_step, 1);
 }
 
+TEST(Plan, ToleranceControlsTheStepOnlyWhenBothOperatorsRun) {
+  Scene s = moving_scene();
+  s.fluid.temperature = 0.0;
+  s.time.coupling_step = 0.1;
+  s.time.splitting = Splitting::kStrang;
+  s.time.tolerance = StepTolerance{1e-3, 2.0, 0.5};
+  Plan p = make_plan(s);
+  EXPECT_TRUE(p.step_control);
+  EXPECT_FALSE(p.overlap_allowed);  // a rejected step is redone by both services
+  EXPECT_FALSE(p.flow_replay_allowed);
+  EXPECT_TRUE(mentions(p.lines(),
+                       "coupling step: error-controlled, tolerance relative 0.001, "
+                       "absolute 2 (first step 0.1, at most 0.5, at least 0.0001; "
+                       "splitting error of order 2"))
+      << ::testing::PrintToString(p.lines());
+  const auto j = p.to_json();
+  EXPECT_EQ(j["step_control"]["order"], 2);
+  EXPECT_EQ(j["step_control"]["max_step"], 0.5);
+  EXPECT_FALSE(make_plan(moving_scene()).to_json().contains("step_control"));
+  s.species = {species("A", true)};
+  s.fluid.backend = "static";  // only the SSA runs: nothing to control
+  p = make_plan(s);
+  EXPECT_FALSE(p.step_control);
+  EXPECT_TRUE(mentions(p.lines(), "skipped: error control (time.tolerance): not needed"));
+}
+
 TEST(Plan, NoSsaServiceWithoutStochasticSpecies) {
   Scene s = moving_scene();
   s.species = {species("C", false)};

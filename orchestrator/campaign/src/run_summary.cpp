@@ -182,6 +182,15 @@ void print_summary(const fs::path& dir, std::FILE* out) {
   std::fprintf(
       out, "  t = %g: %.0f coupling steps, %.0f fluid sub-steps (%.2f per step), %.0f overlapped\n",
       t.time, t.steps, t.substeps, t.steps > 0 ? t.substeps / t.steps : 0.0, t.overlapped);
+  if (const auto sc = first.value("step_control", nlohmann::json::object());
+      is_run && !sc.empty()) {
+    std::fprintf(out,
+                 "  error-controlled step (time.tolerance): %llu accepted, %llu rejected; step "
+                 "%g to %g; largest estimated error %.3g of the tolerance\n",
+                 sc.value("accepted", 0ULL), sc.value("rejected", 0ULL),
+                 sc.value("smallest_step", 0.0), sc.value("largest_step", 0.0),
+                 sc.value("largest_error", 0.0));
+  }
   if (t.events_recorded) {
     std::fprintf(out, "  SSA events: %.0f (reactions + diffusion jumps)\n", t.events);
   } else {

@@ -144,6 +144,11 @@ class CoupledRun {
           "(flow_replay.bin in the ensemble's folder): resume the ensemble, sadr resume DIR");
     }
     restore_checkpoint(cp, fluid(), ssa());
+    if (loop_->controller()) {  // time.tolerance: the controller's tau, counters and inputs
+      const auto it = cp.blobs.find("step_control");
+      if (it == cp.blobs.end()) throw InvalidArgument("checkpoint has no 'step_control' blob");
+      loop_->restore_control_state(it->second.bytes);
+    }
     loop_->resume_at(cp.manifest.time, cp.manifest.step_index);
     frames_->relist_until(loop_->time());
     log::info("resumed at t = ", loop_->time(), " after ", loop_->steps(), " coupling steps");
@@ -162,7 +167,7 @@ class CoupledRun {
   std::filesystem::path checkpoint() {
     ScopedTimer timer(manifest_.timings_s, "checkpoint");
     const CheckpointPoint at{seed_, options_.realization, loop_->steps(), loop_->time()};
-    return save_checkpoint(scene_, at, fluid(), ssa(), options_.output_dir);
+    return save_checkpoint(scene_, at, fluid(), ssa(), options_.output_dir, loop_->control_state());
   }
 
   void write_manifest() {

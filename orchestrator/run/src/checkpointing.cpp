@@ -10,7 +10,8 @@ namespace sadr::orchestrator {
 
 std::filesystem::path save_checkpoint(const Scene& scene, const CheckpointPoint& at,
                                       FluidService* fluid, SsaService* ssa,
-                                      const std::filesystem::path& output_dir) {
+                                      const std::filesystem::path& output_dir,
+                                      const std::string& control_state) {
   CheckpointManifest m;
   m.scene_path = std::filesystem::absolute(scene.source_path).string();
   m.scene_hash = scene.source_hash;
@@ -21,6 +22,7 @@ std::filesystem::path save_checkpoint(const Scene& scene, const CheckpointPoint&
   std::map<std::string, ServiceBlob> blobs;
   if (fluid) blobs["fluid"] = ServiceBlob{scene.fluid.backend, fluid->snapshot(at.step_index)};
   if (ssa) blobs["ssa"] = ServiceBlob{"nsm", ssa->snapshot(at.step_index)};
+  if (!control_state.empty()) blobs["step_control"] = ServiceBlob{"controller", control_state};
   const auto dir = output_dir / "checkpoint";
   write_checkpoint(dir, m, blobs);
   log::debug("checkpoint at t = ", at.time, " (step ", at.step_index, ")");

@@ -6,6 +6,7 @@
 #include "sadr/fluid/backend_schema.hpp"
 #include "sadr/orchestrator/diagnostics.hpp"
 #include "sadr/orchestrator/splitting.hpp"
+#include "sadr/orchestrator/step_control.hpp"
 
 namespace sadr::orchestrator {
 
@@ -122,8 +123,20 @@ Plan make_plan(const Scene& scene) {
                         "checkpoint and stop time in one call, at most " +
                         format_number(kFrameToFrameMaxSteps) + " coupling steps long)");
   }
+  if (const auto& tol = scene.time.tolerance) {
+    p.step_control = p.ssa_service && p.fluid_stepping;
+    p.tolerance = *tol;
+    p.first_step = scene.time.coupling_step;
+    if (!p.step_control) {
+      p.skipped.push_back(
+          "error control (time.tolerance): not needed (only one operator runs, "
+          "no splitting error); every step is the coupling step");
+    }
+  }
   if (!p.ssa_service || !p.fluid_stepping) {
     p.overlap_reason = "only one operator runs";
+  } else if (p.step_control) {
+    p.overlap_reason = "time.tolerance (a rejected step is redone by both services)";
   } else if (p.splitting != Splitting::kLie) {
     p.overlap_reason = "strang splitting (the fluid's second half step needs the SSA's result)";
   } else if (p.back_transfer) {
@@ -142,6 +155,8 @@ Plan make_plan(const Scene& scene) {
   } else if (p.back_transfer) {
     p.flow_replay_reason =
         "back-transfer ssa -> fluid: the fluid reads " + join(p.back_transfer_species);
+  } else if (p.step_control) {
+    p.flow_replay_reason = "time.tolerance: the steps follow the realization";
   } else if (!scene.fluid.body_forces.empty()) {
     p.flow_replay_reason = "fluid.body_forces: every realization writes its forces on bodies";
   } else {
@@ -209,6 +224,15 @@ std::vector<std::string> Plan::lines() const {
                              : "not launched"));
   out.push_back("splitting: " + std::string(to_string(splitting)) + ", " +
                 std::to_string(fluid_calls_per_step) + " fluid call(s) per coupling step");
+  if (step_control) {
+    out.push_back("coupling step: error-controlled, tolerance relative " +
+                  format_number(tolerance.relative) + ", absolute " +
+                  format_number(tolerance.absolute) + " (first step " + format_number(first_step) +
+                  ", at most " + format_number(tolerance.max_step) + ", at least " +
+                  format_number(first_step * StepController::kMinStepFraction) +
+                  "; splitting error of order " + (splitting == Splitting::kStrang ? "2" : "1") +
+                  " estimated from the coupling inputs)");
+  }
   out.push_back(std::string("thermal noise: ") + (thermal_noise ? "on" : "off"));
   out.push_back("back-transfer ssa -> fluid: " +
                 (back_transfer ? join(back_transfer_species) : std::string("off")));
@@ -257,6 +281,14 @@ nlohmann::json Plan::to_json() const {
   };
   if (!frozen_species.empty()) j["frozen_species"] = frozen_species;  // hybrid scenes only
   if (ssa_time_laws) j["ssa_time_laws"] = true;
+  if (step_control) {  // time.tolerance scenes only
+    j["step_control"] = {{"relative", tolerance.relative},
+                         {"absolute", tolerance.absolute},
+                         {"first_step", first_step},
+                         {"max_step", tolerance.max_step},
+                         {"min_step", first_step * StepController::kMinStepFraction},
+                         {"order", splitting == Splitting::kStrang ? 2 : 1}};
+  }
   if (!chosen.empty()) j["chosen"] = chosen;  // scenes that leave out the sound speed only
   return j;
 }

@@ -94,6 +94,17 @@ std::optional<CouplingStep> next_coupling_step(double t, double tau, double end_
   return landing_step(t, end, end_time, output_times);
 }
 
+std::optional<CouplingStep> next_controlled_step(double t, double tau, double end_time,
+                                                 std::span<const double> output_times) {
+  auto cs = next_coupling_step(t, tau, end_time, output_times);
+  if (!cs || cs->output || cs->last) return cs;
+  const auto two = next_coupling_step(t, 2.0 * tau, end_time, output_times);
+  if (two && (two->output || two->last)) {
+    return next_coupling_step(t, 0.5 * two->length(), end_time, output_times);
+  }
+  return cs;
+}
+
 double next_step_length(double t, double tau, double end_time,
                         std::span<const double> output_times) {
   const auto step = next_coupling_step(t, tau, end_time, output_times);

@@ -29,6 +29,17 @@ LoopSettings make_loop_settings(const Scene& scene, const Plan& plan) {
   s.frozen = plan.frozen_species;
   s.overlap = plan.overlap && plan.overlap_allowed;
   s.frame_to_frame = plan.frame_to_frame;
+  if (plan.step_control) {
+    s.tolerance = scene.time.tolerance;
+    for (const auto& rx : scene.reactions) {
+      for (const auto& sp : plan.back_transfer_species) {
+        double change = 0.0;
+        for (const auto& e : rx.products) change += e.species == sp ? e.count : 0.0;
+        for (const auto& e : rx.reactants) change -= e.species == sp ? e.count : 0.0;
+        s.jump2 = std::max(s.jump2, change * change);
+      }
+    }
+  }
   return s;
 }
 
@@ -114,7 +125,23 @@ SplittingLoop::SplittingLoop(FluidService* fluid, SsaService* ssa, LoopSettings 
   if (!ssa_) s_.back_transfer.clear();
   // Results are identical only when the fluid never reads the SSA.
   overlap_ = s_.overlap && fluid_ && ssa_ && s_.fluid_stepping && s_.back_transfer.empty() &&
-             s_.splitting == Splitting::kLie;
+             s_.splitting == Splitting::kLie && !s_.tolerance;
+  if (s_.tolerance && fluid_ && ssa_ && s_.fluid_stepping) {
+    const bool strang = s_.splitting == Splitting::kStrang;
+    control_ = std::make_unique<StepController>(*s_.tolerance, s_.tau, strang ? 2 : 1);
+    auto track = [&](const std::string& name, HoldRule rule, bool counts) {
+      InputTrack t;
+      t.name = name;
+      t.rule = rule;
+      t.counts = counts;
+      tracks_.push_back(std::move(t));
+    };
+    for (const auto& name : s_.back_transfer) {
+      track(name, strang ? HoldRule::kTrapezoid : HoldRule::kEnd, true);
+    }
+    for (const auto& name : s_.frozen)
+      track(name, strang ? HoldRule::kMidpoint : HoldRule::kEnd, false);
+  }
 }
 
 SplittingLoop::~SplittingLoop() = default;
@@ -135,11 +162,15 @@ bool SplittingLoop::run(const LoopHooks& hooks) {
   // Nothing moves (frame_to_frame): one step per output/checkpoint/stop time.
   const FrameToFrame landings{s_.checkpoint_every, s_.stop_at};
   const FrameToFrame* ftf = s_.frame_to_frame ? &landings : nullptr;
+  auto next_step = [&] {
+    return control_ ? next_controlled_step(t_, control_->tau(), t_end, outputs)
+                    : next_coupling_step(t_, tau, t_end, outputs, ftf);
+  };
   if (overlap_ && !worker_) worker_ = std::make_unique<Worker>();
   bool interrupted = false;
   const auto loop_t0 = Clock::now();
   try {
-    while (auto cs = next_coupling_step(t_, tau, t_end, outputs, ftf)) {
+    while (auto cs = next_step()) {
       // Overlap: leave the SSA stage of this step running while the fluid
       // computes the next one, unless the step ends where both services are
       // needed at once (a frame, a checkpoint, the stop time, the end) or a
@@ -147,7 +178,11 @@ bool SplittingLoop::run(const LoopHooks& hooks) {
       const bool defer_ssa = overlap_ && !cs->output && !cs->last && cs->end < next_checkpoint &&
                              !reaches_stop_at(cs->end) && !stop_requested() &&
                              next_coupling_step(cs->end, tau, t_end, outputs, ftf);
-      step(*cs, defer_ssa);
+      if (control_) {
+        *cs = controlled_step(*cs);
+      } else {
+        step(*cs, defer_ssa);
+      }
       for (const auto& sf : stage_forces_) {
         if (hooks.body_forces) hooks.body_forces(sf.t, sf.dt, sf.forces);
       }
@@ -236,6 +271,7 @@ void SplittingLoop::step(const CouplingStep& cs, bool defer_ssa) {
                         ": the SSA stage needs the frozen concentrations of the hybrid "
                         "reactions, but no fluid stage returned them just before it");
       }
+      if (control_) last_frozen_ = frozen;
       job->frozen = std::move(frozen);
       frozen = {};
       if (defer_ssa && k + 1 == stages.size()) {

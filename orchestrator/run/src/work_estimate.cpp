@@ -150,6 +150,7 @@ WorkEstimate estimate_work(const Scene& s, const Plan& plan, const MachineLimits
   if (plan.fluid_service) e.fluid_bytes = fluid_memory(s.fluid.backend, d).at(e.particles) * j;
   if (plan.ssa_service) e.ssa_bytes = ssa_memory(d).at(e.particles) * j;
   const double tau = s.time.coupling_step;
+  e.step_control = plan.step_control;
   e.coupling_steps =
       std::ceil(s.time.end / tau * (1.0 - 1e-12)) + static_cast<double>(s.output.times.size());
   if (plan.fluid_stepping && fluid && fluid->known()) {
@@ -251,8 +252,10 @@ std::vector<std::string> WorkEstimate::lines() const {
   } else if (substeps_unknown) {
     fluid = ", fluid sub-steps not known (the backend did not report its limits)";
   }
-  out.push_back("estimate: " + num(coupling_steps) + " coupling steps" + fluid + "; " +
-                num(frames) + " frame(s), " + bytes_text(output_bytes) + " of output");
+  out.push_back(
+      "estimate: " + num(coupling_steps) + " coupling steps" +
+      (step_control ? " (of the first step; time.tolerance takes as many as it needs)" : "") +
+      fluid + "; " + num(frames) + " frame(s), " + bytes_text(output_bytes) + " of output");
   if (event_rate > 0 || molecules > 0) {
     out.push_back("estimate: " + num(molecules) + " molecules, ~" + num(event_rate) +
                   " SSA events per unit time at t = 0, ~" + num(events) + " events in all");

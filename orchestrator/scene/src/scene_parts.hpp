@@ -109,6 +109,9 @@ void read_assigned(SceneContext& ctx, const Field& entry);
 /// Expands and compiles every assigned species' expression (after read_species).
 void check_assigned(SceneContext& ctx, const Field& root);
 void read_time_and_output(SceneContext& ctx, const Field& root);
+/// time.tolerance (a number: relative; or {relative, absolute, max_step}), after
+/// time.coupling_step was read (scene_tolerance.cpp).
+void read_time_tolerance(SceneContext& ctx, const Field& time);
 
 // Silent zeros (scene_warnings.cpp): warnings with the key and line.
 /// A reaction whose regions and kinds select no particle.

@@ -70,6 +70,11 @@ std::vector<std::string> describe_scene(const Scene& s) {
   out.push_back("time: tau = " + format_number(s.time.coupling_step) + ", end = " +
                 format_number(s.time.end) + ", " + std::string(to_string(s.time.splitting)) +
                 " splitting, seed " + std::to_string(s.seed));
+  if (const auto& tol = s.time.tolerance) {
+    out.push_back("time.tolerance: relative " + format_number(tol->relative) + ", absolute " +
+                  format_number(tol->absolute) + ", steps from tau up to " +
+                  format_number(tol->max_step));
+  }
   out.push_back("output: " + std::to_string(s.output.times.size()) + " frame(s)");
   return out;
 }

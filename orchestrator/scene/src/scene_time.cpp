@@ -10,7 +10,8 @@
 namespace sadr::orchestrator::detail {
 
 namespace {
-constexpr std::array<std::string_view, 3> kTimeKeys{"coupling_step", "end", "splitting"};
+constexpr std::array<std::string_view, 4> kTimeKeys{"coupling_step", "end", "splitting",
+                                                    "tolerance"};
 constexpr std::array<std::string_view, 2> kSplittings{"lie", "strang"};
 constexpr std::array<std::string_view, 9> kOutputKeys{
     "directory",        "every",        "times",      "include_initial", "formats", "species",
@@ -95,6 +96,7 @@ void read_time_and_output(SceneContext& ctx, const Field& root) {
     if (tau) s.time.coupling_step = *tau;
     if (end) s.time.end = *end;
     time_ok = tau && end;
+    if (tau) read_time_tolerance(ctx, time);
   }
 
   std::vector<double> times;

@@ -23,10 +23,12 @@ struct CheckpointPoint {
 };
 
 /// Writes output_dir/checkpoint (blobs "fluid" with the scene's backend name and
-/// "ssa" for each service present) and returns the manifest's path.
+/// "ssa" for each service present, and "step_control" when `control_state` is not
+/// empty: SplittingLoop::control_state()) and returns the manifest's path.
 std::filesystem::path save_checkpoint(const Scene& scene, const CheckpointPoint& at,
                                       FluidService* fluid, SsaService* ssa,
-                                      const std::filesystem::path& output_dir);
+                                      const std::filesystem::path& output_dir,
+                                      const std::string& control_state = {});
 
 /// Restores every service present from its blob in `checkpoint`; throws
 /// InvalidArgument naming the missing blob.

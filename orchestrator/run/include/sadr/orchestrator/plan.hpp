@@ -44,6 +44,11 @@ struct Plan {
   /// Skip the coupling step: SSA alone, nothing moves, nothing reset between
   /// calls; steps go frame to frame (splitting.hpp FrameToFrame).
   bool frame_to_frame = false;
+  /// time.tolerance with both operators: the coupling step is error-controlled
+  /// (docs/method.md section 1b); `tolerance` is the scene's.
+  bool step_control = false;
+  StepTolerance tolerance;
+  double first_step = 0.0;                         ///< time.coupling_step [time]
   std::vector<std::string> fluid_species;          ///< on the fluid wire (deterministic + fed back)
   std::vector<std::string> ssa_species;            ///< on the SSA wire (stochastic)
   std::vector<std::string> back_transfer_species;  ///< stochastic species the fluid reads

@@ -72,6 +72,10 @@ struct RunManifest {
   /// Forces on bodies (scene fluid.body_forces): BodyForceLog::summary(); left out of run.json
   /// when empty.
   nlohmann::json body_forces = nlohmann::json::object();
+  /// The error-controlled coupling step (time.tolerance), over the whole run (a resumed
+  /// run continues the counts): accepted, rejected, unestimated, over_tolerance,
+  /// smallest_step, largest_step, largest_error, next_step; left out of run.json when empty.
+  nlohmann::json step_control = nlohmann::json::object();
 
   RunManifest();
   [[nodiscard]] nlohmann::json to_json() const;

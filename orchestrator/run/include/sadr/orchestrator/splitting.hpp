@@ -90,6 +90,13 @@ std::optional<CouplingStep> next_coupling_step(double t, double tau, double end_
                                                std::span<const double> output_times,
                                                const FrameToFrame* frame_to_frame);
 
+/// next_coupling_step() of the error-controlled step (time.tolerance): when the next
+/// output or end time is more than tau but less than 2 tau ahead, a step of half the
+/// distance, so that the landing step is not a sliver (tau is the controller's largest
+/// safe step; the two halves are both shorter).
+std::optional<CouplingStep> next_controlled_step(double t, double tau, double end_time,
+                                                 std::span<const double> output_times);
+
 /// Length of next_coupling_step(); 0 when the run is finished [time].
 double next_step_length(double t, double tau, double end_time,
                         std::span<const double> output_times);

@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "sadr/orchestrator/scene.hpp"
 #include "sadr/orchestrator/service_interfaces.hpp"
 #include "sadr/orchestrator/splitting.hpp"
+#include "sadr/orchestrator/step_control.hpp"
 
 namespace sadr::orchestrator {
 
@@ -46,6 +48,11 @@ struct LoopSettings {
   /// Overlap SSA step k with fluid step k + 1 (used only where results cannot
   /// change: Lie, both services, fluid stepping, no back-transfer).
   bool overlap = false;
+  /// time.tolerance with both operators running (Plan::step_control): each step's
+  /// splitting error is estimated, the step accepted or redone (StepController).
+  std::optional<StepTolerance> tolerance;
+  /// Largest squared change of a fed-back copy number in one SSA event (noise bound).
+  double jump2 = 1.0;
 };
 
 /// The loop settings of `scene` run as `plan` (stop_at: none).
@@ -84,11 +91,22 @@ class SplittingLoop {
   [[nodiscard]] double time() const { return t_; }
   [[nodiscard]] std::uint64_t steps() const { return step_; }
   [[nodiscard]] bool overlapping() const { return overlap_; }
+  /// The step controller (LoopSettings::tolerance), else null.
+  [[nodiscard]] const StepController* controller() const { return control_.get(); }
+  /// The controller's state and its inputs' samples (checkpoint blob; "" without
+  /// a controller), and back (resume).
+  [[nodiscard]] std::string control_state() const;
+  void restore_control_state(const std::string& bytes);
 
  private:
   struct SsaJob;
   class Worker;
   void step(const CouplingStep& cs, bool defer_ssa);
+  /// One step under the controller (controlled_step.cpp): tried from a snapshot of
+  /// both services, redone shorter until accepted; returns the step taken.
+  CouplingStep controlled_step(CouplingStep cs);
+  std::vector<InputSample> start_samples();
+  std::vector<InputSample> end_samples(const CouplingStep& cs, std::uint64_t events);
   SpeciesCounts back_transfer_counts();
   void run_ssa(SsaJob& job);
   void finish_ssa(const SsaJob& job);
@@ -112,6 +130,12 @@ class SplittingLoop {
     std::vector<BodyForceSample> forces;
   };
   std::vector<StageForces> stage_forces_;
+  /// With a tolerance: the controller, the coupling inputs it watches (the fed-back
+  /// copy numbers, then the frozen concentrations) and the frozen concentrations the
+  /// last SSA stage received.
+  std::unique_ptr<StepController> control_;
+  std::vector<InputTrack> tracks_;
+  SpeciesConcentrations last_frozen_;
   std::unique_ptr<SsaJob> pending_;  ///< an SSA stage running on worker_
   std::unique_ptr<Worker> worker_;   ///< declared last: joined first
 };

@@ -41,6 +41,7 @@ struct WorkEstimate {
   double particles = 0;
   double sadr_bytes = 0, fluid_bytes = 0, ssa_bytes = 0;  ///< peak RSS per process
   double coupling_steps = 0;
+  bool step_control = false;  ///< time.tolerance: coupling_steps counts steps of the first length
   double substeps_per_step = 0;    ///< fluid sub-steps per coupling step (0: none or not known)
   double fluid_substeps = 0;       ///< fluid sub-steps in all, one realization (0: not known)
   std::string substep_limit;       ///< what sets them (FluidSubsteps::criterion(); "" not known)

@@ -64,10 +64,18 @@ using model::WallPlane;
 enum class Splitting { kLie, kStrang };
 std::string_view to_string(Splitting splitting);
 
+/// time.tolerance: the coupling step chosen by an error controller (docs/method.md section 1b).
+struct StepTolerance {
+  double relative = 0.0;  ///< >= 0, of the RMS over particles of each coupling input
+  double absolute = 0.0;  ///< >= 0, in the input's units (molecules, concentration)
+  double max_step = 0.0;  ///< largest step [time]; >= coupling_step (the first step)
+};
+
 struct TimeSettings {
-  double coupling_step = 0.0;  ///< tau > 0 [time]
+  double coupling_step = 0.0;  ///< tau > 0 [time]; with `tolerance`, the first step
   double end = 0.0;            ///< end time >= 0 [time]; the run starts at 0
   Splitting splitting = Splitting::kLie;
+  std::optional<StepTolerance> tolerance;  ///< none: every step is coupling_step
 };
 
 using model::JumpConvention;
