@@ -136,6 +136,7 @@ void SdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
              std::none_of(wall_.begin(), wall_.end(), [](std::uint8_t w) { return w != 0; });
   if (open_.enabled()) apply_open_boundary(0.0);  // (reaction sites follow the kinds it sets)
   setup_bodies();
+  setup_moving_bodies();
   time_ = 0;
   prepared_ = false;
 }
