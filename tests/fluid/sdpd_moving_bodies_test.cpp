@@ -7,7 +7,8 @@
 //    velocity V + omega axis x (x - c(t)) at their current position, evaluated here independently
 //    of common/rigid_motion.hpp, to 1e-12;
 //  - a restore continues bit-identically (positions, velocities, densities);
-//  - other backends refuse a moving body, and so does the model with Morris walls;
+//  - other backends refuse a moving body, and so does the model with Morris walls on a region's
+//    surface or on tangent planes of a turning body (a translating one is allowed);
 //  - a body that leaves the box on a walled axis stops the run, naming the body and the time.
 // The Galilean-invariance check of the drag is in sdpd_moving_bodies_flow_test.cpp.
 #include <gtest/gtest.h>
@@ -132,6 +133,11 @@ TEST(MovingBodies, WallParticlesFollowTheClosedFormAtEverySubstep) {
   test::DiskInBox adami = moving_disk(2, 20, WallModel::kAdami, {-2.0, 1.0, 0.0}, 3.0);
   add_tangents(adami);
   check_follows(adami, "2D adami");
+  test::DiskInBox morris =
+      moving_disk(2, 20, WallModel::kMorrisExtrapolated, {-2.0, 1.0, 0.0}, 0.0);
+  morris.model.wall_regions.clear();
+  add_tangents(morris);
+  check_follows(morris, "2D morris (translating)");
   const double k = 1.0 / std::sqrt(3.0);
   check_follows(moving_disk(3, 8, WallModel::kAdami, {1.0, -0.5, 0.25}, 2.0, {k, k, k}),
                 "3D adami");
@@ -174,14 +180,27 @@ TEST(MovingBodies, RefusedByOtherBackendsAndWithMorrisWalls) {
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("moving_bodies"), std::string::npos) << e.what();
   }
+  // Morris: the regions' surfaces stay in place, tangent planes do not turn
   test::DiskInBox m = moving_disk(2, 10, WallModel::kMorrisExtrapolated, {1.0, 0.0, 0.0}, 0.0);
   SdpdBackend b;
   try {
     b.initialize(m.model, m.state, {});
-    FAIL() << "Morris walls accepted a moving body";
+    FAIL() << "Morris walls on a region surface accepted a moving body";
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("wall_model"), std::string::npos) << e.what();
   }
+  test::DiskInBox turning =
+      moving_disk(2, 10, WallModel::kMorrisExtrapolated, {1.0, 0.0, 0.0}, 1.0);
+  turning.model.wall_regions.clear();
+  add_tangents(turning);
+  try {
+    b.initialize(turning.model, turning.state, {});
+    FAIL() << "Morris walls accepted a turning body";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("angular_velocity"), std::string::npos) << e.what();
+  }
+  turning.model.moving_bodies.front().motion.angular_velocity = 0.0;
+  EXPECT_NO_THROW(b.initialize(turning.model, turning.state, {}));  // translating: allowed
 }
 
 TEST(MovingBodies, LeavingTheBoxOnAWalledAxisStopsTheRun) {

@@ -116,8 +116,12 @@ TEST(SceneWallMotion, MovesMakesTheBodyTravelAndTurn) {
   const std::string still = replace_once(text, "moves: true", "moves: false");
   EXPECT_NE(error_of(still).find("along the surface normal"), std::string::npos) << error_of(still);
   const std::string morris = replace_once(text, "wall_model: adami", "wall_model: morris");
-  EXPECT_NE(error_of(morris).find("a moving body with fluid.wall_model morris"), std::string::npos)
+  EXPECT_NE(error_of(morris).find("a moving body with fluid.wall_model morris that turns"),
+            std::string::npos)
       << error_of(morris);
+  const std::string translating =
+      replace_once(morris, "angular_velocity: 2.0, center: [0.1, 0.0], ", "");
+  EXPECT_EQ(error_of(translating), "<no error>");  // Morris on tangent planes that travel
 }
 
 /// Plane Couette: periodic x, walls below y = 0 (at rest) and above y = 1 (sliding at 0.5).

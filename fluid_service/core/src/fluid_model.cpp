@@ -168,8 +168,17 @@ void FluidModel::validate() const {
     const auto& n = m.axis;
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (!(std::fabs(len - 1.0) < 1e-6)) p.add(f + "axis |n|", len, "a unit vector");
-    if (wall_model == WallModel::kMorrisExtrapolated) {
-      p.add(f + "wall_model", 1.0, "stationary or adami (Morris' wall surfaces do not move)");
+    // Morris: each wall particle's own tangent plane, relative to it, moves with a translation;
+    // the regions' surfaces (wall_regions) and a turning body's planes do not.
+    if (wall_model == WallModel::kMorrisExtrapolated && wall_tangents.empty()) {
+      p.add(f + "wall_model", 1.0,
+            "stationary or adami, or morris with wall_tangents (the regions' wall surfaces do "
+            "not move)");
+    }
+    if (wall_model == WallModel::kMorrisExtrapolated && m.angular_velocity != 0.0) {
+      p.add(f + "angular_velocity", m.angular_velocity,
+            "0 with wall_model morris (its tangent planes do not turn), or wall_model stationary "
+            "or adami");
     }
   }
   if (open_boundary.enabled) {

@@ -69,10 +69,16 @@ std::optional<WallMotion> read_wall_motion(SceneContext& ctx, const Field& paren
     r.error(f, "'center' and 'axis' describe a rotation; required with them: 'angular_velocity'");
   }
   if (auto moves = r.boolean(f, "moves", false)) m.moves = *moves;
-  if (m.moves && ctx.scene.fluid.wall_model == "morris") {
+  // Morris walls made by the geometry extrapolate across each wall particle's own tangent plane,
+  // which travels with it; wall_planes' surfaces stay in place and the planes do not turn.
+  if (m.moves && ctx.scene.fluid.wall_model == "morris" &&
+      (spins || !ctx.scene.fluid.wall_planes.empty())) {
     r.error(YamlReader::child(f, "moves"),
-            "a moving body with fluid.wall_model morris (Morris' wall surfaces stay in place); "
-            "allowed with moves: true: wall_model stationary or adami");
+            std::string("a moving body with fluid.wall_model morris ") +
+                (spins ? "that turns (Morris' tangent planes do not turn)"
+                       : "and fluid.wall_planes (their surfaces stay in place)") +
+                "; allowed with moves: true: wall_model stationary or adami, or morris for a "
+                "body that only translates, without wall_planes");
   }
   require_moving_walls(ctx, f);
   return m;
