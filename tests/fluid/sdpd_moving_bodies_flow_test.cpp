@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Property (physics): Galilean invariance of a moving body's drag (FluidModel::moving_bodies;
 // docs/fluid-core.md "Moving walls"; a turning body against Taylor-Couette flow:
-// validation/moving_body_taylor_couette_validation_test.cpp). The periodic cylinder array of the
+// sdpd_moving_bodies_taylor_couette_test.cpp). The periodic cylinder array of the
 // drag validation (cylinder_array_validation_test.cpp: a disk of solid fraction c = 0.1 in a unit
 // cell, fluid driven by the body acceleration g along x, Adami walls) at 20 particles across, run
 // twice to t = 0.6 (about 13 relaxation times):

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Validation: Taylor-Couette flow with a turning inner cylinder (FluidModel::moving_bodies;
+// Property (physics): Taylor-Couette flow with a turning inner cylinder (FluidModel::moving_bodies;
 // docs/fluid-core.md "Moving walls"): the steady flow between an inner cylinder
 // spinning at Omega and a fixed outer one (sdpd_moving_walls_test.cpp, taylor_couette_scene.hpp)
 // with the inner wall particles turning with the cylinder (they travel 2 rad by t = 1, off the
@@ -14,9 +14,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "../reference_solutions.hpp"
-#include "../taylor_couette_scene.hpp"
+#include "reference_solutions.hpp"
 #include "sdpd/sdpd_backend.hpp"
+#include "taylor_couette_scene.hpp"
 
 namespace sadr::fluid {
 namespace {
@@ -68,7 +68,7 @@ std::array<double, 2> taylor_couette(WallModel wm, bool tangents, bool moves) {
 
 // Measured (scaled L2, turning / in place): stationary 5.28e-2 / 5.21e-2, Adami 2.20e-2 /
 // 2.38e-2, Adami with the tangent planes 4.02e-2 / 6.60e-2.
-TEST(MovingBodyValidation, TurningInnerCylinderGivesTaylorCouetteFlow) {
+TEST(MovingBodies, TurningInnerCylinderGivesTaylorCouetteFlow) {
   struct Case {
     const char* name;
     WallModel wm;
