@@ -342,8 +342,9 @@ class Body(Part):
     and ``fluid_layer`` regions (``layer_thickness`` deep), region bodies
     may restrict their members to ``kinds``; a solid body's ``motion`` is its
     walls' prescribed motion, a map ``{velocity: [..]}`` and/or
-    ``{angular_velocity: w, center: [..], axis: [..]}`` (docs/scene-format.md
-    "Moving walls")."""
+    ``{angular_velocity: w, center: [..], axis: [..]}``, with ``moves: True``
+    a body that translates and turns (docs/scene-format.md "Moving walls",
+    "Moving bodies")."""
 
     name: str | None = None
     role: str | None = None

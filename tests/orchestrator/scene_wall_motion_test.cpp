@@ -2,13 +2,16 @@
 // Moving walls in the scene (scene_wall_motion.cpp): a wall fill rule's velocity and a solid
 // body's rigid `motion` become the wall particles' prescribed velocities; a motion with a
 // component along the wall's surface normal and a backend that keeps walls at rest are refused
-// at the key's line.
+// at the key's line; with `moves: true` the body carries its motion (GeometryBody::moving), its
+// walls start with the rigid-body velocity, the normal check does not apply, and the health check
+// turns a turning body's tangent planes.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
 #include "sadr/common/status.hpp"
+#include "sadr/orchestrator/run_health.hpp"
 #include "sadr/orchestrator/scene_loader.hpp"
 #include "scene_test_support.hpp"
 
@@ -73,6 +76,52 @@ TEST(SceneWallMotion, SpinningAboutAnotherPointOrTranslatingIsRefusedAtTheMotion
       "backend: static, h_over_dx: 3.0");
   EXPECT_NE(error_of(statics).find("keeps wall particles at rest"), std::string::npos)
       << error_of(statics);
+}
+
+TEST(SceneWallMotion, MovesMakesTheBodyTravelAndTurn) {
+  const std::string text = replace_once(
+      replace_once(kSpinning, "motion: {angular_velocity: 2.0, center: [0.0, 0.0]}",
+                   "motion: {velocity: [0.1, -0.2], angular_velocity: 2.0, center: [0.1, 0.0], "
+                   "moves: true}"),
+      "shear_viscosity: 0.1}", "shear_viscosity: 0.1, wall_model: adami}");
+  const Scene s = parse_scene(text, "scene.yaml");  // off-centre and translating: allowed
+  ASSERT_TRUE(s.geometry);
+  const GeometryBody* rotor = nullptr;
+  for (const auto& b : s.geometry->bodies) {
+    if (b.name == "rotor") {
+      rotor = &b;
+    } else {
+      EXPECT_FALSE(b.moving) << b.name;
+    }
+  }
+  ASSERT_NE(rotor, nullptr);
+  ASSERT_TRUE(rotor->moving);
+  EXPECT_EQ(rotor->moving->velocity[0], 0.1);
+  EXPECT_EQ(rotor->moving->velocity[1], -0.2);
+  EXPECT_EQ(rotor->moving->angular_velocity, 2.0);
+  EXPECT_EQ(rotor->moving->center[0], 0.1);
+  for (const auto i : s.find_region("rotor")->particles) {
+    const double x = s.particles.positions[3 * i], y = s.particles.positions[3 * i + 1];
+    EXPECT_NEAR(s.particles.velocities[3 * i], 0.1 - 2.0 * y, 1e-12) << i;
+    EXPECT_NEAR(s.particles.velocities[3 * i + 1], -0.2 + 2.0 * (x - 0.1), 1e-12) << i;
+  }
+  const HealthContext c = health_context(s);
+  ASSERT_EQ(c.turning.size(), 1u);
+  ASSERT_EQ(c.tangent_turns.size(), c.tangents.size());
+  std::size_t turned = 0;
+  for (const int k : c.tangent_turns) turned += k == 0 ? 1 : 0;
+  EXPECT_GT(turned, 0u);
+  EXPECT_LT(turned, c.tangents.size());  // the container's walls stay
+  // without `moves` (or with moves: false) the same motion is refused as before
+  const std::string still = replace_once(text, "moves: true", "moves: false");
+  EXPECT_NE(error_of(still).find("along the surface normal"), std::string::npos) << error_of(still);
+  const std::string morris = replace_once(text, "wall_model: adami", "wall_model: morris");
+  EXPECT_NE(error_of(morris).find("a moving body with fluid.wall_model morris that turns"),
+            std::string::npos)
+      << error_of(morris);
+  const std::string translating =
+      replace_once(morris, "angular_velocity: 2.0, center: [0.1, 0.0], ", "");
+  EXPECT_EQ(error_of(translating), "<no error>");  // Morris on tangent planes that travel
 }
 
 /// Plane Couette: periodic x, walls below y = 0 (at rest) and above y = 1 (sliding at 0.5).

@@ -10,6 +10,7 @@ target_sources(sadr_fluid_backends PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_half_path.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_integrator.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_limits.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sdpd_moving_bodies.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_open_boundary.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_pair_block.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sdpd_restart.cpp

@@ -115,11 +115,17 @@ void SdpdBackend::adami_wall_values(const Y& y) {
     const double kappa = k >= 0 ? adami_kappa_[ks] : 0.0;
     sdpd::SurfaceFit<D> fit;
     PairGeometry<D> g{};
+    // g - a_w: a moving body's wall accelerates (centripetal, omega^2 r, when it turns)
+    std::array<double, 3> acc{grav[0], grav[1], grav[2]};
+    if (!moving_.of.empty() && moving_.of[w] >= 0) {
+      const std::array<double, 3> aw = moving_acceleration(w);
+      for (int a = 0; a < 3; ++a) acc[a] -= aw[a];
+    }
     for (const std::uint32_t f : nlist_.of(w)) {
       if (wall_[f] || !pair_geometry<D>(x, w, f, g)) continue;
       const double wf = kernel_.w(g.r);
       double bx = 0;
-      for (int a = 0; a < D; ++a) bx += grav[a] * g.x[a];
+      for (int a = 0; a < D; ++a) bx += acc[a] * g.x[a];
       sum_w += wf;
       sum_pw += eos_.pressure(y.rho[f]) * wf;
       sum_hydro += sdpd::adami_hydrostatic_term(y.rho[f], bx, wf);

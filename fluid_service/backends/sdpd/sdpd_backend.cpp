@@ -136,6 +136,7 @@ void SdpdBackend::setup(const FluidModel& model, const ParticleState& initial,
              std::none_of(wall_.begin(), wall_.end(), [](std::uint8_t w) { return w != 0; });
   if (open_.enabled()) apply_open_boundary(0.0);  // (reaction sites follow the kinds it sets)
   setup_bodies();
+  setup_moving_bodies();
   time_ = 0;
   prepared_ = false;
 }
@@ -220,7 +221,8 @@ std::size_t SdpdBackend::memory_bytes() const {
          vb(list_ref_x_) + vb(wall_) + morris_.bytes() + open_.bytes() + vb(mass_) + vb(kinds_) +
          vb(ids_) + vb(pd2_) + vb(inv_nd_) + vb(vol_) + vb(sqrt_inv_nd_) + noise_bytes +
          vb(adami_p_) + vb(adami_v_) + vb(adami_tangent_) + vb(adami_kappa_) + slabs_.bytes() +
-         vb(hin_) + vb(hacc_);
+         vb(hin_) + vb(hacc_) + vb(moving_.of) + vb(moving_.particle) + vb(moving_.body) +
+         vb(moving_.x0) + vb(moving_.tangent) + vb(moving_.tangent_body) + vb(moving_.n0);
 }
 
 void register_sdpd_backend(BackendRegistry& registry) {

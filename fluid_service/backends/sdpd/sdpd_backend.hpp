@@ -15,10 +15,12 @@
 ///  - sdpd_restart.cpp: the saved state;
 ///  - sdpd_open_boundary.*: the open channel; sdpd_morris_walls.hpp: Morris walls;
 ///  - sdpd_adami_walls.cpp: Adami walls (wall pressure and velocity from the fluid);
-///  - sdpd_body_forces.cpp: the force and torque of the fluid on bodies (fluid.body_forces).
+///  - sdpd_body_forces.cpp: the force and torque of the fluid on bodies (fluid.body_forces);
+///  - sdpd_moving_bodies.cpp: bodies whose wall particles move (FluidModel::moving_bodies).
 /// Both pair loops are bit-identical on any thread count (no atomics). Wall particles (kind kWall)
-/// never move, keep v = 0 (no-slip), evolve their density by continuity (so the fluid cannot
-/// penetrate) and hold their species values (Dirichlet) or are excluded (no-flux / Neumann ghost).
+/// are not integrated (a moving body's are placed by sdpd_moving_bodies.cpp), keep v = v_wall,
+/// evolve their density by continuity (so the fluid cannot penetrate) and hold their species values
+/// (Dirichlet) or are excluded (no-flux / Neumann ghost).
 #pragma once
 
 #include <array>
@@ -367,6 +369,10 @@ class SdpdBackend final : public BackendBase {
     std::vector<std::array<double, 3>> reference;   ///< torque reference: their centroid
     std::vector<double> sum;                        ///< integral of Rates::body over the step
     double duration = 0;                            ///< length integrated [time]
+    /// Moving bodies: per group the index of the moving body its reference follows (-1: none)
+    /// and the reference at t = 0 (sdpd_moving_bodies.cpp).
+    std::vector<std::int32_t> moving;
+    std::vector<std::array<double, 3>> reference0;
   };
   Bodies bodies_;
   /// bodies_ from the model's groups (each must hold a wall particle) at the initial state.
@@ -379,6 +385,26 @@ class SdpdBackend final : public BackendBase {
   void accumulate_body_forces(double dt);
   /// The step's mean force and torque per body (StepReport::body_forces); resets the sums.
   std::vector<BodyForce> take_body_forces();
+
+  // --- moving bodies (sdpd_moving_bodies.cpp): FluidModel::moving_bodies
+  struct Moving {
+    std::vector<std::int32_t> of;         ///< per particle: its entry below, -1 (empty: none)
+    std::vector<std::uint32_t> particle;  ///< the moving wall particles
+    std::vector<std::uint32_t> body;      ///< their body (index into model_.moving_bodies)
+    std::vector<double> x0;               ///< their positions at t = 0, 3 each
+    std::vector<std::uint32_t> tangent;   ///< wall_tangents entries of moving particles
+    std::vector<std::uint32_t> tangent_body;
+    std::vector<double> n0;  ///< those entries' normals at t = 0, 3 each
+    double time = 0;         ///< the time of the last placement
+  };
+  Moving moving_;
+  /// moving_ from the model at the initial state (after setup_bodies), placed at t = 0.
+  void setup_moving_bodies();
+  /// Places the moving bodies' wall particles of y at time t (positions, velocities), turns
+  /// their wall_tangents normals and moves the body force references to t.
+  void move_bodies(Y& y, double t);
+  /// The acceleration of wall particle w at the last placement (0 unless it moves and turns).
+  [[nodiscard]] std::array<double, 3> moving_acceleration(std::size_t w) const;
 };
 
 template <int D>

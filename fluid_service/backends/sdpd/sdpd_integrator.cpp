@@ -116,6 +116,7 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
     for (std::size_t i = 0; i < n; ++i) ytmp_.c[s][i] += dt * r0_.dc[s][i];
   }
   species_.set_time(time_ + dt);
+  move_bodies(ytmp_, time_ + dt);    // (moving bodies: their walls at the end of the sub-step)
   evaluate(ytmp_, key, r1_, false);  // noise: the start-of-step force is reused
   if (tvf) apply_transport_velocity(ytmp_, dt, r1_);
     // Corrector: Y = Y + dt/2 (f(Y) + f(Y~)), same noise increment.
@@ -137,6 +138,7 @@ double SdpdBackend::general_substep(std::uint64_t step_index, std::uint64_t key,
     if (!model_.species[s].deterministic()) continue;
     for (std::size_t i = 0; i < n; ++i) y_.c[s][i] += 0.5 * dt * (r0_.dc[s][i] + r1_.dc[s][i]);
   }
+  move_bodies(y_, time_ + dt);
   if (!bodies_.walls.empty()) accumulate_body_forces(dt);
   return dt;
 }

@@ -87,7 +87,8 @@ constexpr double viscosity_factor() {
 /// Adami, Hu & Adams (2012) generalized wall (sdpd_adami_walls.cpp): the pair's terms of the
 /// sums of wall particle w over its fluid neighbours f, with W_wf the kernel weight and x_wf =
 /// x_w - x_f: the weight W_wf, p_f W_wf, v_f W_wf and rho_f (b . x_wf) W_wf with b = g - a_w the
-/// body acceleration relative to the wall's (a_w = 0: walls never move).
+/// body acceleration relative to the wall's (a_w: 0 for walls at rest; sdpd_adami_walls.cpp folds a
+/// moving body's into g).
 inline double adami_hydrostatic_term(double rho_f, double bx, double w) {
   return rho_f * bx * w;
 }

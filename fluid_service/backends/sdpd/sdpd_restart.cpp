@@ -91,6 +91,7 @@ void SdpdBackend::restore_state(BlobReader& r, std::uint32_t version) {
     if (species_.has_reactions()) species_.update_sites(kinds_);
   }
   time_ = t;
+  move_bodies(y_, time_);  // (the saved positions again, and the normals and references of t)
   prepared_ = false;
   list_ref_x_.clear();
   if (!ref.empty()) rebuild_neighbors(ref);

@@ -199,6 +199,11 @@ void BackendBase::initialize(const FluidModel& model, const ParticleState& initi
                           "', ...) are not computed by this backend (allowed: none; backend "
                           "sdpd computes them)");
   }
+  if (!model.moving_bodies.empty() && !capabilities().moving_walls) {
+    throw InvalidArgument(prefix(name()) + "moving_bodies ('" + model.moving_bodies.front().name +
+                          "', ...): this backend keeps wall particles at rest (allowed: none; "
+                          "backend sdpd moves bodies)");
+  }
   validate_initial_state(name(), model, initial, concentrations);
   initialized_ = false;
   setup(model, initial, concentrations);

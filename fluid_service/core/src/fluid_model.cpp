@@ -151,6 +151,36 @@ void FluidModel::validate() const {
       p.add("wall_regions[" + std::to_string(w) + "].inward_normal |n|", len, "a unit vector");
     }
   }
+  for (std::size_t b = 0; b < moving_bodies.size(); ++b) {
+    const std::string f = "moving_bodies[" + std::to_string(b) + "].";
+    const RigidMotion& m = moving_bodies[b].motion;
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(m.velocity[a])) {
+        p.add(f + "velocity[" + std::to_string(a) + "]", m.velocity[a], "finite");
+      }
+      if (!std::isfinite(m.center[a])) {
+        p.add(f + "center[" + std::to_string(a) + "]", m.center[a], "finite");
+      }
+    }
+    if (!std::isfinite(m.angular_velocity)) {
+      p.add(f + "angular_velocity", m.angular_velocity, "finite");
+    }
+    const auto& n = m.axis;
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(std::fabs(len - 1.0) < 1e-6)) p.add(f + "axis |n|", len, "a unit vector");
+    // Morris: each wall particle's own tangent plane, relative to it, moves with a translation;
+    // the regions' surfaces (wall_regions) and a turning body's planes do not.
+    if (wall_model == WallModel::kMorrisExtrapolated && wall_tangents.empty()) {
+      p.add(f + "wall_model", 1.0,
+            "stationary or adami, or morris with wall_tangents (the regions' wall surfaces do "
+            "not move)");
+    }
+    if (wall_model == WallModel::kMorrisExtrapolated && m.angular_velocity != 0.0) {
+      p.add(f + "angular_velocity", m.angular_velocity,
+            "0 with wall_model morris (its tangent planes do not turn), or wall_model stationary "
+            "or adami");
+    }
+  }
   if (open_boundary.enabled) {
     const auto& ob = open_boundary;
     const int d = box.dimension;

@@ -228,6 +228,19 @@ FluidModel model_from_proto(const v1::FluidModel& in, std::size_t n_particles) {
     m.body_forces.push_back(
         {in.body_forces(k), wire::region_particles(regions, in.body_forces(k), here)});
   }
+  for (int k = 0; k < in.regions_size(); ++k) {  // solid bodies whose wall particles move
+    const auto& r = in.regions(k);
+    if (!r.has_motion()) continue;
+    const std::string here = where + ".regions[" + std::to_string(k) + "].motion";
+    MovingBody body;
+    body.name = r.name();
+    body.particles = wire::region_particles(regions, r.name(), here);
+    body.motion.velocity = vec3(r.motion().velocity(), here + ".velocity", {0, 0, 0});
+    body.motion.angular_velocity = r.motion().angular_velocity();
+    body.motion.center = vec3(r.motion().center(), here + ".center", {0, 0, 0});
+    body.motion.axis = vec3(r.motion().axis(), here + ".axis", {0, 0, 1});
+    m.moving_bodies.push_back(std::move(body));
+  }
   m.validate();
   return m;
 }

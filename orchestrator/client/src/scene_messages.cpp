@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 
 #include <google/protobuf/io/coded_stream.h>
@@ -145,7 +146,26 @@ fluid::v1::InitRequest make_fluid_init(const Scene& scene, const Plan& plan, std
     m->add_body_forces(body);
     regions_used.insert(body);
   }
+  // Solid bodies whose walls move (motion: {moves: true}): their regions carry the motion.
+  std::map<std::string, RigidMotion> moving;
+  if (scene.geometry) {
+    for (const auto& b : scene.geometry->bodies) {
+      if (!b.moving) continue;
+      moving.emplace(b.name, *b.moving);
+      regions_used.insert(b.name);
+    }
+  }
   add_regions(scene, regions_used, m->mutable_regions());
+  for (auto& r : *m->mutable_regions()) {
+    const auto it = moving.find(r.name());
+    if (it == moving.end()) continue;
+    const RigidMotion& mo = it->second;
+    auto* out = r.mutable_motion();
+    out->mutable_velocity()->Assign(mo.velocity.begin(), mo.velocity.end());
+    out->set_angular_velocity(mo.angular_velocity);
+    out->mutable_center()->Assign(mo.center.begin(), mo.center.end());
+    out->mutable_axis()->Assign(mo.axis.begin(), mo.axis.end());
+  }
   wire::to_proto(scene.particles, *init.mutable_particles(), /*with_velocities=*/true);
   return init;
 }

@@ -182,6 +182,23 @@ HealthContext health_context(const Scene& s) {
     c.surfaces.push_back(std::move(sf));
   }
   c.tangents = scene_wall_tangents(s);
+  // A turning body's tangent planes turn with it: each frame turns their normals to its time.
+  if (s.geometry && !c.tangents.empty()) {
+    std::vector<int> body_of(s.particles.size(), -1);
+    for (const auto& b : s.geometry->bodies) {
+      if (!b.moving || b.moving->angular_velocity == 0.0) continue;
+      const Region* r = s.find_region(b.name);
+      if (!r) continue;
+      for (const std::uint32_t i : r->particles) body_of[i] = static_cast<int>(c.turning.size());
+      c.turning.push_back(*b.moving);
+    }
+    if (!c.turning.empty()) {
+      c.tangent_turns.resize(c.tangents.size());
+      for (std::size_t k = 0; k < c.tangents.size(); ++k) {
+        c.tangent_turns[k] = body_of[c.tangents.particles[k]];
+      }
+    }
+  }
   for (const Species& sp : s.species) {
     HealthContext::SpeciesInfo info;
     info.name = sp.name;
@@ -468,7 +485,19 @@ void HealthCheck::add_frame(const ParticleState& p, std::span<const SpeciesColum
                       const std::array<double, 3>& x) {
     place = {id, x, time, frame, value, true};
   };
-  const PenetrationResult pen = find_wall_penetration(p, c_);
+  PenetrationResult pen;
+  if (c_.tangent_turns.empty()) {
+    pen = find_wall_penetration(p, c_);
+  } else {  // turning bodies: their tangent planes at this frame's time
+    HealthContext turned = c_;
+    for (std::size_t k = 0; k < turned.tangent_turns.size(); ++k) {
+      if (turned.tangent_turns[k] < 0) continue;
+      const RigidMotion& m = turned.turning[static_cast<std::size_t>(turned.tangent_turns[k])];
+      const std::array<double, 3> n = m.rotate(&c_.tangents.normals[3 * k], time);
+      for (std::size_t a = 0; a < 3; ++a) turned.tangents.normals[3 * k + a] = n[a];
+    }
+    pen = find_wall_penetration(p, turned);
+  }
   penetration_last = pen.count;
   if (pen.count) ++penetration_frames;
   if (pen.count > penetration_max) {

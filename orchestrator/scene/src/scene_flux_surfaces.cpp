@@ -30,6 +30,13 @@ bool read_surface_share(SceneContext& ctx, const Field& f, const Field& root,
   const GeometryReport& geo = *ctx.scene.geometry;
   const GeometryBody* body = surface_body(ctx, sf, name);
   if (!body) return false;
+  if (body->moving) {
+    r.error(sf, "'" + name +
+                    "' moves (motion: {moves: true}), and a surface flux enters the fluid "
+                    "particles next to the surface at t = 0; allowed: a body at rest, or the "
+                    "body's wall particles with a 'free' boundary and a reaction there");
+    return false;
+  }
   const Region* region = nullptr;
   if (auto rn = r.string(f, "region", false)) {
     region = lookup_region(ctx, rf, *rn);

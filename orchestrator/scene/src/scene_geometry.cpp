@@ -376,6 +376,7 @@ void read_geometry(SceneContext& ctx, const Field& root) {
     info.name = b.name;
     info.role = b.role;
     info.surface_id = b.surface_id;
+    if (b.motion && b.motion->moves) info.moving = b.motion->rigid();
     info.origin = r.diag().file() + ":" + std::to_string(b.field.where.line);
     info.exact_volume = b.shape.shape->exact_volume();
     info.exact_area = b.shape.shape->exact_area();

@@ -15,8 +15,8 @@ namespace sadr::orchestrator::detail {
 
 namespace {
 
-constexpr std::array<std::string_view, 4> kMotionKeys{"velocity", "angular_velocity", "center",
-                                                      "axis"};
+constexpr std::array<std::string_view, 5> kMotionKeys{"velocity", "angular_velocity", "center",
+                                                      "axis", "moves"};
 
 double norm(const std::array<double, 3>& v) {
   return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -67,6 +67,18 @@ std::optional<WallMotion> read_wall_motion(SceneContext& ctx, const Field& paren
   }
   if (!spins && (YamlReader::present(af) || YamlReader::present(YamlReader::child(f, "center")))) {
     r.error(f, "'center' and 'axis' describe a rotation; required with them: 'angular_velocity'");
+  }
+  if (auto moves = r.boolean(f, "moves", false)) m.moves = *moves;
+  // Morris walls made by the geometry extrapolate across each wall particle's own tangent plane,
+  // which travels with it; wall_planes' surfaces stay in place and the planes do not turn.
+  if (m.moves && ctx.scene.fluid.wall_model == "morris" &&
+      (spins || !ctx.scene.fluid.wall_planes.empty())) {
+    r.error(YamlReader::child(f, "moves"),
+            std::string("a moving body with fluid.wall_model morris ") +
+                (spins ? "that turns (Morris' tangent planes do not turn)"
+                       : "and fluid.wall_planes (their surfaces stay in place)") +
+                "; allowed with moves: true: wall_model stationary or adami, or morris for a "
+                "body that only translates, without wall_planes");
   }
   require_moving_walls(ctx, f);
   return m;
@@ -129,14 +141,16 @@ void apply_body_motion(SceneContext& ctx, const Field& where, const WallMotion& 
     const std::uint32_t i = members[k];
     const auto& n = normals[i];
     const double vn = n[0] * v[k][0] + n[1] * v[k][1] + n[2] * v[k][2];
-    if (std::abs(vn) > 1e-6 * vmax) {
+    if (!motion.moves && std::abs(vn) > 1e-6 * vmax) {
       const std::array<double, 3> x{p.positions[3 * i], p.positions[3 * i + 1],
                                     p.positions[3 * i + 2]};
-      ctx.reader.error(where, "the motion moves the wall particle at " + vector_text(x, d) +
-                                  " with " + vector_text(v[k], d) + ", " + format_number(vn) +
-                                  " of it along the surface normal " + vector_text(n, d) +
-                                  "; allowed: a motion along the surface everywhere (a body "
-                                  "that slides along itself or spins about its own axis)");
+      ctx.reader.error(
+          where, "the motion moves the wall particle at " + vector_text(x, d) + " with " +
+                     vector_text(v[k], d) + ", " + format_number(vn) +
+                     " of it along the surface normal " + vector_text(n, d) +
+                     "; allowed: a motion along the surface everywhere (a body "
+                     "that slides along itself or spins about its own axis; a body whose walls "
+                     "follow the motion: moves: true)");
       return;
     }
     for (std::size_t a = 0; a < 3; ++a) p.velocities[3 * i + a] = v[k][a];

@@ -14,6 +14,7 @@
 #include <optional>
 #include <vector>
 
+#include "sadr/common/rigid_motion.hpp"
 #include "scene_parts.hpp"
 
 namespace sadr::orchestrator::detail {
@@ -23,13 +24,19 @@ struct WallMotion {
   double angular_velocity = 0.0;        ///< [1/time], about `axis` through `center`
   std::array<double, 3> center{};       ///< [length]
   std::array<double, 3> axis{0, 0, 1};  ///< unit
+  /// `moves: true`: the body's wall particles follow the motion (their positions move; the
+  /// fluid backend places them, docs/fluid-core.md "Moving walls"); false: they stay in place.
+  bool moves = false;
 
   /// The velocity of the rigid-body motion at x (3 doubles).
   [[nodiscard]] std::array<double, 3> at(const double* x) const;
+  /// The motion as the fluid backend takes it (moving bodies).
+  [[nodiscard]] RigidMotion rigid() const { return {velocity, angular_velocity, center, axis}; }
 };
 
 /// The `motion` map of `parent` (absent: nullopt): {velocity: [..]} and/or
-/// {angular_velocity: w, center: [..], axis: [..] (3D only)}. Errors are reported.
+/// {angular_velocity: w, center: [..], axis: [..] (3D only)}, and `moves` (a solid body's walls
+/// follow the motion; refused with Morris walls). Errors are reported.
 std::optional<WallMotion> read_wall_motion(SceneContext& ctx, const Field& parent);
 
 /// Whether the scene's fluid backend holds a prescribed wall velocity (an unknown one: true, it
@@ -47,7 +54,8 @@ void check_face_wall_motion(SceneContext& ctx, const Field& where, const std::ar
 
 /// Geometry: the velocity of each of a body's wall particles `members` from `motion`, set in the
 /// scene's particles, refusing (at `where`) one with a component along its surface normal
-/// `normals[i]` (unit, per particle) larger than 1e-6 of the largest speed.
+/// `normals[i]` (unit, per particle) larger than 1e-6 of the largest speed, unless the body
+/// moves (`moves`), whose walls follow the motion.
 void apply_body_motion(SceneContext& ctx, const Field& where, const WallMotion& motion,
                        const std::vector<std::uint32_t>& members,
                        const std::vector<std::array<double, 3>>& normals);

@@ -17,6 +17,7 @@
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/rate_law.hpp"
+#include "sadr/common/rigid_motion.hpp"
 #include "sadr/common/wall_surface.hpp"
 #include "sadr/model/chemistry.hpp"
 
@@ -186,6 +187,14 @@ struct BodyForceGroup {
   std::vector<std::uint32_t> particles;
 };
 
+/// A body whose wall particles follow a rigid motion (docs/fluid-core.md "Moving walls"): the
+/// backend sets their positions and velocities from the time at every sub-step (sdpd only).
+struct MovingBody {
+  std::string name;
+  std::vector<std::uint32_t> particles;  ///< its wall particles (indices into the initial state)
+  RigidMotion motion;                    ///< from the particles' initial positions at t = 0
+};
+
 /// The scene. validate() reports every problem at once.
 struct FluidModel {
   Box box{};
@@ -230,6 +239,8 @@ struct FluidModel {
   OpenBoundary open_boundary{};
   /// Bodies whose force and torque every step reports (StepReport::body_forces); empty: none.
   std::vector<BodyForceGroup> body_forces;
+  /// Bodies whose wall particles move rigidly (sdpd; other backends refuse them); empty: none.
+  std::vector<MovingBody> moving_bodies;
 
   /// Throws InvalidArgument naming every offending field with value and allowed range.
   void validate() const;

@@ -55,8 +55,9 @@ struct Capabilities {
   /// species (stochastic ones are the SSA's and need nothing of the backend).
   bool boundary_fluxes = true;
   /// Wall particles with a prescribed velocity (scene: a wall fill rule's `velocity`, a solid
-  /// body's `motion`): the backend holds it and its wall models use it. Without it the scene
-  /// loader refuses a moving wall (it would be held at rest).
+  /// body's `motion`): the backend holds it and its wall models use it; and bodies whose wall
+  /// particles move (`motion: {moves: true}`, FluidModel::moving_bodies). Without it the scene
+  /// loader refuses a moving wall (it would be held at rest) and the fluid core a moving body.
   bool moving_walls = false;
   /// Forces and torques on bodies (fluid.body_forces). Without it the scene loader and the
   /// fluid core refuse the key.

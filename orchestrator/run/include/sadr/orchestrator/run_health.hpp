@@ -6,9 +6,10 @@
 ///    within h of a wall particle of its region), or, for wall particles without a surface,
 ///    closer than half a lattice spacing to one (the lattice fill puts the wall surface half a
 ///    spacing in front of the first wall layer, so such a particle is past it); with Morris
-///    walls made by the geometry (scene_wall_tangents), past the tangent plane of the wall
-///    particle within h whose closest surface point is nearest, by more than
-///    kHealthTangentSlack dx (the plane departs from a curved surface by about dx^2 / (4 R));
+///    walls made by the geometry (scene_wall_tangents; a turning body's turned to the frame's
+///    time), past the tangent plane of the wall particle within h whose closest surface point is
+///    nearest, by more than kHealthTangentSlack dx (the plane departs from a curved surface by
+///    about dx^2 / (4 R));
 ///  - empty holes: connected empty cells of a grid of cell size >= h (the kernel support) that do
 ///    not reach the edge of the particles' extent and that mostly border cells holding fluid;
 ///  - the density deviation |rho/rho0 - 1| over fluid particles (max and RMS);
@@ -28,6 +29,7 @@
 #include <vector>
 
 #include "sadr/common/particle_state.hpp"
+#include "sadr/common/rigid_motion.hpp"
 #include "sadr/common/wall_surface.hpp"
 #include "sadr/orchestrator/frame_writers.hpp"
 
@@ -71,6 +73,11 @@ struct HealthContext {
   std::vector<Surface> surfaces;  ///< fluid.wall_planes
   /// Morris walls made by the geometry: the wall particles' tangent planes, by particle id.
   WallTangents tangents;
+  /// Bodies that turn (motion: {moves: true} with an angular velocity): per entry of `tangents`
+  /// the index into `turning` (-1: at rest or only translating), whose rotation at a frame's time
+  /// turns the entry's normal (the normals above are those at t = 0). Empty: none.
+  std::vector<int> tangent_turns;
+  std::vector<RigidMotion> turning;
   /// Per species of the scene: what can change its total.
   struct SpeciesInfo {
     std::string name;

@@ -23,6 +23,7 @@
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/rate_law.hpp"
+#include "sadr/common/rigid_motion.hpp"
 #include "sadr/model/chemistry.hpp"
 #include "sadr/model/fluid.hpp"
 #include "sadr/orchestrator/output_settings.hpp"
@@ -93,6 +94,9 @@ struct GeometryBody {
   /// Area of the shape's surface (perimeter in 2D) where the shape gives it (Shape::exact_area).
   std::optional<double> exact_area{};
   bool inside_box = false;  ///< the shape's bounds lie inside the box (no surface is cut off)
+  /// Solid bodies with `motion: {moves: true}`: the rigid motion their wall particles follow
+  /// (the region `name` holds them); unset: their walls stay in place.
+  std::optional<RigidMotion> moving{};
 };
 
 struct GeometryReport {
