@@ -195,12 +195,15 @@ void read_ssa(SceneContext& ctx, const Field& root) {
   const Field tolerance = YamlReader::child(ssa, "tolerance");
   if (!YamlReader::present(tolerance)) return;
   if (ctx.scene.ssa.method != model::SsaMethod::kAdaptive) {
-    r.error(tolerance, "is only allowed with method: adaptive (the exact method has none)");
+    r.error(tolerance,
+            "is given with method: exact; allowed only with method: adaptive (the "
+            "exact method has no tolerance)");
   } else if (auto eps = r.number(ssa, "tolerance", Bound::kPositive, "dimensionless", true)) {
     if (*eps < 1) {
       ctx.scene.ssa.tolerance = *eps;
     } else {
-      r.error(tolerance, "= " + format_number(*eps) + " (allowed: 0 < tolerance < 1)");
+      r.error(tolerance,
+              format_number(*eps) + " is out of range; allowed: 0 < tolerance < 1 [dimensionless]");
     }
   }
 }
