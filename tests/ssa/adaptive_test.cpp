@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -218,6 +219,66 @@ TEST(Adaptive, MorrisReservoirChainReachesTheExactSteadyMeans) {
     worst = std::max(worst, std::abs(b));
   }
   RecordProperty("max_abs_relative_bias", std::to_string(worst));
+}
+
+// Reactions are never leaped: in one voxel (no edges, nothing diffuses) a high-copy
+// Michaelis-Menten network E + S <-> ES -> E + P runs the exact NSM's events one for one.
+TEST(Adaptive, WellMixedReactionsStayExact) {
+  auto model = [](SsaMethod method) {
+    Model m;
+    m.species = {{"E", 0.1}, {"S", 0.1}, {"ES", 0.1}, {"P", 0.1}};
+    m.reactions = {{"bind", {{0, 1}, {1, 1}}, {{2, 1}}, 0.01, {}, {}},
+                   {"unbind", {{2, 1}}, {{0, 1}, {1, 1}}, 1.0, {}, {}},
+                   {"cat", {{2, 1}}, {{0, 1}, {3, 1}}, 0.5, {}, {}}};
+    m.box = testing::make_box(1, 1.0, false);
+    m.smoothing_length = 0.4;
+    m.method = method;
+    m.tolerance = 0.001;
+    return m;
+  };
+  const ParticleState p = testing::make_lattice(1, 1, 1.0);
+  NsmSolver exact(model(SsaMethod::kExact), 9), adapt(model(SsaMethod::kAdaptive), 9);
+  for (NsmSolver* s : {&exact, &adapt}) {
+    s->update_graph(p);
+    s->set_counts(0, std::vector<std::int64_t>{2000});
+    s->set_counts(1, std::vector<std::int64_t>{50000});
+    s->advance(1.0);
+  }
+  ASSERT_GT(exact.events(), 5000u);
+  EXPECT_EQ(adapt.leaped_molecules(), 0u);
+  EXPECT_EQ(adapt.events(), exact.events());
+  for (int sp = 0; sp < 4; ++sp) EXPECT_EQ(adapt.counts(sp)[0], exact.counts(sp)[0]);
+}
+
+// A pair that becomes abundant during one long advance() is leaped from the next
+// classification on (windows without abundant pairs end after an event budget).
+TEST(Adaptive, SwitchesToLeapingWithinOneAdvance) {
+  Model m = testing::diffusion_model(testing::make_box(1, 10.0, true), 1.5, 1.0);
+  m.reactions = {{"birth", {}, {{0, 1}}, 5000.0, {}, {0}}};  // 0 -> A in voxel 0 only
+  m.method = SsaMethod::kAdaptive;
+  m.tolerance = 0.01;  // n_c = 100
+  NsmSolver s(m, 3);
+  s.update_graph(testing::make_lattice(1, 10, 1.0));
+  s.advance(2.0);
+  EXPECT_GT(s.leaped_molecules(), 0u);
+  EXPECT_GT(s.leap_windows(), 0u);
+  std::int64_t total = 0;
+  for (const std::int64_t x : s.counts(0)) total += x;
+  EXPECT_GT(total, 5000);  // about 10000 births (V = 1)
+}
+
+// The tolerance is checked where the model is (0 < eps < 1, adaptive only).
+TEST(Adaptive, ToleranceOutOfRangeIsRefused) {
+  Model m = testing::diffusion_model(testing::make_box(1, 4.0, false), 1.5, 1.0);
+  m.method = SsaMethod::kAdaptive;
+  for (double eps : {0.0, 1.0, -0.5, std::nan("")}) {
+    m.tolerance = eps;
+    const std::string msg = testing::message_of([&] { m.validate(); });
+    EXPECT_NE(msg.find("tolerance"), std::string::npos) << eps << ": " << msg;
+    EXPECT_NE(msg.find("0 < tolerance < 1"), std::string::npos) << msg;
+  }
+  m.method = SsaMethod::kExact;  // not read by the exact method
+  EXPECT_NO_THROW(m.validate());
 }
 
 }  // namespace
