@@ -105,12 +105,12 @@ TEST(Adaptive, WithoutAbundantPairsFiresTheExactEvents) {
   }
 }
 
-// High copy numbers (n_c = 20 at eps = 0.05): leaps happen; a snapshot taken after some
+// High copy numbers (n_c = 20 at eps = 0.05, thousands per voxel): leaps happen; a snapshot taken after some
 // stages resumes bit-identically through graph rebuilds and new inputs, into a fresh solver
 // of another seed and into the used one; the later snapshots are byte-identical.
 TEST(Adaptive, RestoreContinuesBitIdentically) {
-  const Model m = rich_model(SsaMethod::kAdaptive, 0.05, 400.0);
-  NsmSolver a = start(m, 7, 300, 100);
+  const Model m = rich_model(SsaMethod::kAdaptive, 0.05, 5000.0);
+  NsmSolver a = start(m, 7, 5000, 2000);
   stages(a, 0.0, 3);
   ASSERT_GT(a.leaped_molecules(), 0u);
   const std::string blob = a.save();
@@ -133,11 +133,11 @@ TEST(Adaptive, RestoreContinuesBitIdentically) {
   EXPECT_EQ(all_counts(a), ref);
 
   // Not into an exact solver, nor an exact blob into an adaptive one.
-  NsmSolver exact(rich_model(SsaMethod::kExact, 0.05, 400.0), 7);
+  NsmSolver exact(rich_model(SsaMethod::kExact, 0.05, 5000.0), 7);
   EXPECT_THROW(exact.restore(blob), InvalidArgument);
   EXPECT_THROW(b.restore(exact.save()), InvalidArgument);
   // Another tolerance is another model.
-  NsmSolver other(rich_model(SsaMethod::kAdaptive, 0.06, 400.0), 7);
+  NsmSolver other(rich_model(SsaMethod::kAdaptive, 0.06, 5000.0), 7);
   EXPECT_THROW(other.restore(blob), InvalidArgument);
 }
 

@@ -72,6 +72,7 @@ double AdaptiveLeap::window(const RdmeState& st) {
   const DiffusionGraph& g = st.graph();
   const ReactionTable& table = st.reactions();
   double tau = kInf;
+  jump_rate_ = 0;
   for (int s : st.diffusing_species()) {
     const std::uint8_t* m = mask_.data() + static_cast<std::size_t>(s) * n;
     if (std::find(m, m + n, std::uint8_t{1}) == m + n) continue;
@@ -93,6 +94,7 @@ double AdaptiveLeap::window(const RdmeState& st) {
       const auto v = static_cast<std::uint32_t>(i);
       const double a = kappa * st.jump_weight_sum(s, v);  // per-molecule jump rate out of i
       tau = std::min(tau, eps_ / a);
+      jump_rate_ += a * static_cast<double>(x[i]);
       if (st.fixed(s, v)) continue;  // a held count does not change
       const double xi = static_cast<double>(x[i]);
       double mu = flow_in_[i] - a * xi;

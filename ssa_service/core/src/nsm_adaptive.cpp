@@ -5,7 +5,8 @@
 //  - some pair abundant: tau from the tolerance (AdaptiveLeap::window), the window ends at
 //    min(t + tau, t_end); the abundant pairs' diffusion is leaped at its start, then the NSM
 //    fires every other channel exactly over the window with those pairs masked out;
-//  - none abundant: the exact NSM runs unmasked until t_end or until a budget of events
+//  - none abundant, or a leaping window would save fewer exact events than its O(N + E)
+//    bookkeeping costs: the exact NSM runs unmasked until t_end or until a budget of events
 //    (4 per (species, voxel), at least 4096) has fired, when the counts are classified again.
 // Every change of the exact rates (a leap, a new mask) rescales the pending event times
 // (Gibson-Bruck, as update_graph() does): exact for piecewise-constant rates. The NSM draws
@@ -98,12 +99,22 @@ void NsmSolver::advance_adaptive(double t_end) {
   const std::uint64_t budget = std::max<std::uint64_t>(4096, 4 * pairs);
   constexpr std::uint64_t kNoBudget = std::numeric_limits<std::uint64_t>::max();
   bool masked = false;  // the cached rates are masked ones
+  // A leaping window costs O(N + E) per diffusing species (classification, window length,
+  // two rescales) whatever it saves: it is taken only when the exact events it replaces
+  // (the abundant pairs' jump rate times its length) outnumber that; else the window is exact.
+  const double overhead =
+      static_cast<double>(state_.voxel_count() + state_.graph().edge_count()) *
+      static_cast<double>(std::max<std::size_t>(1, state_.diffusing_species().size()));
   while (time_ < t_end) {
-    if (leap_->classify(state_)) {
+    double t_w = t_end;
+    bool leaps = leap_->classify(state_);
+    if (leaps) {
       const double tau = leap_->window(state_);
-      double t_w = t_end;
       if (time_ + tau < t_end) t_w = time_ + tau;
       if (!(t_w > time_)) t_w = std::min(t_end, std::nextafter(time_, kInf));
+      leaps = leap_->jump_rate() * (t_w - time_) > overhead;
+    }
+    if (leaps) {
       // The leap sits at the window's midpoint (the exact channels run on both halves):
       // the leaped molecules move, on average, when they would have (docs/method.md).
       const double t0 = time_;

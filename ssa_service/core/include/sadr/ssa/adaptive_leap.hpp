@@ -45,6 +45,9 @@ class AdaptiveLeap {
   /// The window length tau [T] for the pairs of the last classify() (> 0; +inf when
   /// nothing limits it).
   [[nodiscard]] double window(const RdmeState& state);
+  /// The exact events per unit time a window of the last window() call saves: the total
+  /// diffusion propensity of the abundant pairs [1/T].
+  [[nodiscard]] double jump_rate() const { return jump_rate_; }
   /// Leaps the diffusion of the pairs of the last classify() over tau.
   /// @return the molecules moved (absorbed ones included).
   std::uint64_t leap(RdmeState& state, double tau);
@@ -63,6 +66,7 @@ class AdaptiveLeap {
   std::int64_t n_c_;
   rng::Xoshiro256 rng_;
   std::uint64_t moved_ = 0;
+  double jump_rate_ = 0;
   std::vector<std::uint8_t> mask_;
   std::vector<double> flow_in_;        ///< scratch: expected arrivals per voxel [1/T]
   std::vector<std::int64_t> start_;    ///< scratch: X_s at the window start
