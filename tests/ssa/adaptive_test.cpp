@@ -105,9 +105,9 @@ TEST(Adaptive, WithoutAbundantPairsFiresTheExactEvents) {
   }
 }
 
-// High copy numbers (n_c = 20 at eps = 0.05, thousands per voxel): leaps happen; a snapshot taken after some
-// stages resumes bit-identically through graph rebuilds and new inputs, into a fresh solver
-// of another seed and into the used one; the later snapshots are byte-identical.
+// High copy numbers (n_c = 20 at eps = 0.05, thousands per voxel): leaps happen; a snapshot taken
+// after some stages resumes bit-identically through graph rebuilds and new inputs, into a fresh
+// solver of another seed and into the used one; the later snapshots are byte-identical.
 TEST(Adaptive, RestoreContinuesBitIdentically) {
   const Model m = rich_model(SsaMethod::kAdaptive, 0.05, 5000.0);
   NsmSolver a = start(m, 7, 5000, 2000);
