@@ -8,12 +8,14 @@
 ///    (a_si = kappa_s W_si, the per-molecule jump rate out of i) and the Cao-Gillespie-Petzold
 ///    bounds |mu_si| tau <= max(eps X_si, 1), sigma2_si tau <= max(eps X_si, 1)^2 on the
 ///    expected change of X_si (diffusion in and out, and every reaction);
-///  - leap(): each abundant open pair sends K ~ Binomial(X_si, 1 - exp(-a_si tau)) molecules
-///    out of i, a reservoir pair emits K ~ Poisson(X_si a_si tau) (its count is held), split
-///    over the usable out-edges by conditional binomials with probabilities d_ij / W_si
-///    (jumps into a reservoir are absorbed). K <= X_si and arrivals only add, so no count
-///    becomes negative. The window's exact NSM then runs without those pairs' diffusion
-///    (RdmeState::fire_masked()).
+///  - leap(), at the window's midpoint: each abundant open pair sends
+///    K ~ Binomial(X_si, a_si tau) molecules out of i (a_si tau <= eps), a reservoir pair
+///    emits K ~ Poisson(X_si a_si tau) (its count is held), split over the usable out-edges
+///    by conditional binomials with probabilities d_ij / W_si (jumps into a reservoir are
+///    absorbed). K <= X_si and arrivals only add, so no count becomes negative. The window's
+///    exact NSM runs on both halves without those pairs' diffusion (RdmeState::fire_masked()).
+/// NsmSolver::advance() leaps a window only when jump_rate() tau exceeds the window's
+/// O(N + E) bookkeeping (src/nsm_adaptive.cpp).
 /// Its random numbers come from their own stream (seed, kStreamId), so the NSM's stream is
 /// the exact solver's: with no abundant pair the run is the exact NSM's, event for event.
 #pragma once
