@@ -94,8 +94,15 @@ void check(const Reaction& reaction, Problems& out) {
   check(n, out);
 }
 
+std::string_view to_string(SsaMethod method) {
+  return method == SsaMethod::kAdaptive ? "adaptive" : "exact";
+}
+
 void check(const SsaSettings& ssa, Problems& out) {
   out.finite_nonneg("regularization", ssa.regularization);
+  if (!(ssa.tolerance > 0 && ssa.tolerance < 1)) {
+    out.add("tolerance", ssa.tolerance, "0 < tolerance < 1");
+  }
 }
 
 }  // namespace sadr::model

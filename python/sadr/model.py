@@ -387,10 +387,13 @@ class Output(_Part):
 
 @dataclass
 class Ssa(_Part):
-    """``ssa``: the diffusion convention (volume, symmetric) and regularization."""
+    """``ssa``: the diffusion convention (volume, symmetric), regularization, and the
+    method (exact, adaptive) with its tolerance (adaptive only)."""
 
     convention: str | None = None
     regularization: Number | None = None
+    method: str | None = None
+    tolerance: Number | None = None
     extra: dict = field(default_factory=dict)
 
 
@@ -585,9 +588,10 @@ class Model:
         self.output.observables = (self.output.observables or []) + [o]
         return o
 
-    def set_ssa(self, convention: str | None = None, regularization: Number | None = None) -> Ssa:
+    def set_ssa(self, convention: str | None = None, regularization: Number | None = None,
+                method: str | None = None, tolerance: Number | None = None) -> Ssa:
         """Options of the spatial SSA."""
-        self.ssa = Ssa(convention, regularization)
+        self.ssa = Ssa(convention, regularization, method, tolerance)
         return self.ssa
 
     # --- finding parts ----------------------------------------------------------

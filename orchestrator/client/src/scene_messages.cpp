@@ -178,6 +178,10 @@ ssa::v1::InitRequest make_ssa_init(const Scene& scene, const Plan& plan, std::ui
   m->set_smoothing_length(scene.fluid.smoothing_length);
   m->set_regularization(scene.ssa.regularization);
   m->set_convention(wire::to_proto(scene.ssa.convention));
+  if (scene.ssa.method == model::SsaMethod::kAdaptive) {  // unset for exact: the same bytes
+    m->set_method(ssa::v1::SSA_METHOD_ADAPTIVE);
+    m->set_tolerance(scene.ssa.tolerance);
+  }
   m->set_seed(seed);
   std::set<std::string> regions_used;
   for (const auto& s : scene.species) {

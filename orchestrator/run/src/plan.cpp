@@ -53,6 +53,9 @@ Plan make_plan(const Scene& scene) {
                                 [](const Reaction& rx) { return rx.stochastic && rx.uses_time; });
 
   p.ssa_service = !p.ssa_species.empty();
+  if (p.ssa_service && scene.ssa.method == model::SsaMethod::kAdaptive) {
+    p.ssa_adaptive_tolerance = scene.ssa.tolerance;
+  }
   if (!p.ssa_service) p.skipped.push_back("ssa_service: not launched (no stochastic species)");
 
   p.fluid_stepping = moving || !deterministic.empty();
@@ -240,6 +243,10 @@ std::vector<std::string> Plan::lines() const {
     out.push_back("hybrid fluid -> ssa: " + join(frozen_species) +
                   " (concentrations after each fluid stage, frozen over the SSA stage)");
   }
+  if (ssa_adaptive_tolerance > 0) {
+    out.push_back("ssa method: adaptive, tolerance " + format_number(ssa_adaptive_tolerance) +
+                  " (diffusion of abundant voxels leaped, the rest exact)");
+  }
   if (ssa_time_laws) {
     out.push_back(
         "ssa laws of t: t held at each SSA stage's start (first order in the "
@@ -288,6 +295,10 @@ nlohmann::json Plan::to_json() const {
                          {"max_step", tolerance.max_step},
                          {"min_step", first_step * StepController::kMinStepFraction},
                          {"order", splitting == Splitting::kStrang ? 2 : 1}};
+  }
+  if (ssa_adaptive_tolerance > 0) {  // adaptive scenes only
+    j["ssa_method"] = "adaptive";
+    j["ssa_tolerance"] = ssa_adaptive_tolerance;
   }
   if (!chosen.empty()) j["chosen"] = chosen;  // scenes that leave out the sound speed only
   return j;

@@ -177,7 +177,8 @@ void read_ssa(SceneContext& ctx, const Field& root) {
   YamlReader& r = ctx.reader;
   const Field ssa = YamlReader::child(root, "ssa");
   if (!YamlReader::present(ssa)) return;
-  static constexpr std::array<std::string_view, 2> kKeys{"convention", "regularization"};
+  static constexpr std::array<std::string_view, 4> kKeys{"convention", "regularization", "method",
+                                                         "tolerance"};
   if (!r.expect_map(ssa, kKeys)) return;
   static constexpr std::array<std::string_view, 2> kConventions{"symmetric", "volume"};
   if (auto c = r.choice(ssa, "convention", kConventions, false, "jump convention")) {
@@ -186,6 +187,25 @@ void read_ssa(SceneContext& ctx, const Field& root) {
   }
   ctx.scene.ssa.regularization =
       r.number_or(ssa, "regularization", 0.01, Bound::kNonNegative, "dimensionless");
+  static constexpr std::array<std::string_view, 2> kMethods{"exact", "adaptive"};
+  if (auto m = r.choice(ssa, "method", kMethods, false, "SSA method")) {
+    ctx.scene.ssa.method =
+        *m == "adaptive" ? model::SsaMethod::kAdaptive : model::SsaMethod::kExact;
+  }
+  const Field tolerance = YamlReader::child(ssa, "tolerance");
+  if (!YamlReader::present(tolerance)) return;
+  if (ctx.scene.ssa.method != model::SsaMethod::kAdaptive) {
+    r.error(tolerance,
+            "is given with method: exact; allowed only with method: adaptive (the "
+            "exact method has no tolerance)");
+  } else if (auto eps = r.number(ssa, "tolerance", Bound::kPositive, "dimensionless", true)) {
+    if (*eps < 1) {
+      ctx.scene.ssa.tolerance = *eps;
+    } else {
+      r.error(tolerance,
+              format_number(*eps) + " is out of range; allowed: 0 < tolerance < 1 [dimensionless]");
+    }
+  }
 }
 
 }  // namespace

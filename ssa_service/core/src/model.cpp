@@ -113,6 +113,9 @@ void Model::validate() const {
     }
   }
   checks.finite_nonneg("regularization", regularization);
+  if (method == SsaMethod::kAdaptive && !(tolerance > 0 && tolerance < 1)) {
+    issues.push_back("tolerance = " + format_value(tolerance) + " (allowed: 0 < tolerance < 1)");
+  }
   for (std::size_t k = 0; k < reservoirs.size(); ++k) {
     const std::string f = "reservoirs[" + std::to_string(k) + "]";
     check_species_ref(issues, f + ".species", reservoirs[k].species, ns);
@@ -302,6 +305,10 @@ std::uint64_t Model::fingerprint() const {
     for (auto v : morris_tangents.particles) f.pod(v);
     for (auto v : morris_tangents.depths) f.pod(v);
     for (auto v : morris_tangents.normals) f.pod(v);
+  }
+  if (method == SsaMethod::kAdaptive) {  // absent for the exact NSM: old fingerprints stay valid
+    f.pod(-6);
+    f.pod(tolerance);
   }
   return f.h;
 }

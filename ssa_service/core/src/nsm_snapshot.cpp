@@ -5,6 +5,7 @@
 //   | vec<f64> masses | vec<u8> kinds | vec<i64> counts (species-major)
 //   | vec<f64> next event time by voxel
 //   | [only with laws of t or frozen species: f64 input time | vec<f64> frozen]
+//   | [version 3 (adaptive models) only: 4 x u64 leap RNG state | u64 molecules leaped]
 //   | u64 FNV-1a of all previous bytes
 // Version 1 (written by the 4-ary heap solver) stored the last field as
 // vec<{f64 time, u32 voxel, u32 pad}> in heap order: the same times, permuted;
@@ -31,7 +32,7 @@ struct HeapRecord {
 std::string NsmSolver::save() const {
   detail::BlobWriter w;
   w.bytes(kMagic);
-  w.pod(kSnapshotVersion);
+  w.pod(leap_ ? kAdaptiveSnapshotVersion : kSnapshotVersion);
   w.pod(state_.model().fingerprint());
   w.pod(seed_);
   w.pod(rng_.state());
@@ -49,6 +50,10 @@ std::string NsmSolver::save() const {
     w.pod(state_.input_time());
     w.vec(state_.frozen());
   }
+  if (leap_) {  // version 3: the leap stream (no window state: every window ends in advance())
+    w.pod(leap_->rng_state());
+    w.pod(leap_->moved());
+  }
   const std::uint64_t sum = detail::fnv1a(w.str());
   w.pod(sum);
   return w.str();
@@ -60,9 +65,15 @@ void NsmSolver::restore(std::string_view blob) {
     throw InvalidArgument("snapshot: bad magic (not an NsmSolver snapshot)");
   }
   const auto version = r.pod<std::uint32_t>("version");
-  if (version != 1 && version != kSnapshotVersion) {
+  if (version != 1 && version != kSnapshotVersion && version != kAdaptiveSnapshotVersion) {
     throw InvalidArgument("snapshot: version = " + std::to_string(version) + " (supported: 1, " +
-                          std::to_string(kSnapshotVersion) + ")");
+                          std::to_string(kSnapshotVersion) + ", " +
+                          std::to_string(kAdaptiveSnapshotVersion) + ")");
+  }
+  if ((version == kAdaptiveSnapshotVersion) != leap_.has_value()) {
+    throw InvalidArgument("snapshot: version = " + std::to_string(version) +
+                          (leap_ ? " into an adaptive solver (allowed: 3)"
+                                 : " into an exact solver (allowed: 1, 2)"));
   }
   if (blob.size() < 8) throw InvalidArgument("snapshot truncated");
   const std::string_view body = blob.substr(0, blob.size() - 8);
@@ -116,6 +127,12 @@ void NsmSolver::restore(std::string_view blob) {
     input_time = r.pod<double>("input time");
     frozen = r.vec<double>("frozen concentrations", max_len);
   }
+  rng::Xoshiro256::State leap_state{};
+  std::uint64_t leap_moved = 0;
+  if (version == kAdaptiveSnapshotVersion) {
+    leap_state = r.pod<rng::Xoshiro256::State>("leap rng state");
+    leap_moved = r.pod<std::uint64_t>("leaped molecules");
+  }
   if (r.remaining() != 8) throw InvalidArgument("snapshot: unexpected trailing bytes");
   for (std::size_t v = 0; v < times.size(); ++v) {
     if (std::isnan(times[v]) || times[v] < time) {
@@ -144,6 +161,7 @@ void NsmSolver::restore(std::string_view blob) {
   seed_ = seed;
   time_ = time;
   events_ = events;
+  if (leap_) leap_->restore(leap_state, leap_moved);
 }
 
 }  // namespace sadr::ssa

@@ -15,7 +15,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 }
 
 NsmSolver::NsmSolver(Model model, std::uint64_t seed)
-    : state_(std::move(model)), rng_(seed, kStreamId), seed_(seed) {}
+    : state_(std::move(model)), rng_(seed, kStreamId), seed_(seed) {
+  if (state_.model().method == SsaMethod::kAdaptive) {
+    leap_.emplace(state_.model().tolerance, seed);
+  }
+}
 
 bool NsmSolver::update_graph(const ParticleState& particles) {
   // The queue of the previous graph (same voxels) keeps its pending draws.
@@ -98,6 +102,10 @@ void NsmSolver::advance(double t_end) {
     throw InvalidArgument("advance: t_end = " + format_value(t_end) +
                               " (allowed: finite and >= current time " + format_value(time_) + ")",
                           {{"field", "t_end"}, {"value", format_value(t_end)}});
+  }
+  if (leap_) {
+    advance_adaptive(t_end);
+    return;
   }
   if (state_.apply_reservoirs()) rebuild_queue();
   if (queue_.empty()) {

@@ -89,6 +89,8 @@ Model model_from_proto(const v1::SsaModel& in, std::size_t n_particles,
   m.smoothing_length = in.smoothing_length();
   if (in.has_regularization()) m.regularization = in.regularization();
   m.convention = wire::from_proto(in.convention(), m.convention);
+  if (in.method() == v1::SSA_METHOD_ADAPTIVE) m.method = SsaMethod::kAdaptive;
+  if (in.has_tolerance()) m.tolerance = in.tolerance();
   const auto regions = wire::regions_from_proto(in.regions(), n_particles, where);
 
   // The model's own checks first (the same the scene loader ran), then index resolution.

@@ -152,12 +152,16 @@ void SsaServiceHandler::advance(const v1::AdvanceRequest& req, v1::AdvanceReply&
   }
   set_frozen(s, req);
   const std::uint64_t before = s.events();
+  const std::uint64_t leaped_before = s.leaped_molecules();
+  const std::uint64_t windows_before = s.leap_windows();
   s.advance(req.t_end());
   rep.set_graph_seconds(std::chrono::duration<double>(t1 - t0).count());
   rep.set_nsm_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
   rep.set_step_index(req.step_index());
   rep.set_time(s.time());
   rep.set_events(s.events() - before);
+  rep.set_leaped_molecules(s.leaped_molecules() - leaped_before);
+  rep.set_leap_windows(s.leap_windows() - windows_before);
   rep.set_graph_rebuilt(rebuilt);
   last_run_id_ = req.run_id();
   last_step_ = req.step_index();

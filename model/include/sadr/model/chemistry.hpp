@@ -84,9 +84,17 @@ struct Reaction {
 enum class JumpConvention { kSymmetric, kVolume };
 std::string_view to_string(JumpConvention convention);
 
+/// How ssa_service samples the RDME (docs/method.md "Adaptive SSA"): kExact, the exact Next
+/// Subvolume Method (the default); kAdaptive, binomial leaps of the diffusion of abundant
+/// (voxel, species) pairs within a tolerance, exact NSM everywhere else.
+enum class SsaMethod { kExact, kAdaptive };
+std::string_view to_string(SsaMethod method);
+
 struct SsaSettings {
   JumpConvention convention = JumpConvention::kVolume;
   double regularization = 0.01;  ///< eps_h in r^2/(r^2 + eps_h h^2), >= 0
+  SsaMethod method = SsaMethod::kExact;
+  double tolerance = 0.01;  ///< kAdaptive only: 0 < eps < 1 (docs/method.md "Adaptive SSA")
 };
 
 // ---- the one set of range checks ------------------------------------------------------------

@@ -55,7 +55,9 @@ struct Plan {
   /// Hybrid reactions: deterministic species the SSA's laws read, sent fluid -> ssa with
   /// every SSA stage and held frozen over it (docs/method.md section 4c).
   std::vector<std::string> frozen_species;
-  bool ssa_time_laws = false;        ///< an SSA law reads t (held at each stage's start)
+  bool ssa_time_laws = false;  ///< an SSA law reads t (held at each stage's start)
+  /// `ssa.method: adaptive`: its tolerance (docs/method.md "Adaptive SSA"); 0 = exact NSM.
+  double ssa_adaptive_tolerance = 0;
   std::size_t fluid_reactions = 0;   ///< reactions among deterministic species
   std::size_t ssa_reactions = 0;     ///< reactions among stochastic species
   std::vector<std::string> skipped;  ///< one line per skipped piece, with the reason

@@ -30,6 +30,7 @@ namespace sadr::ssa {
 /// equilibrium is a uniform concentration, what the fluid's SPH concentration equation relaxes
 /// to on non-uniform particles). One type with the scene's (sadr/model/chemistry.hpp).
 using model::JumpConvention;
+using model::SsaMethod;
 using model::to_string;
 
 /// One chemical species: the model's (sadr/model/chemistry.hpp), indexed by its position in
@@ -143,6 +144,10 @@ struct Model {
   /// laws read, not simulated; their concentrations are inputs held constant over
   /// each advance (NsmSolver::set_inputs). Law species index ns + k is frozen_species[k].
   std::vector<std::string> frozen_species;
+  /// kExact: the NSM; kAdaptive: diffusion of abundant (voxel, species) pairs leaped within
+  /// `tolerance` (adaptive_leap.hpp, docs/method.md "Adaptive SSA"), the rest exact NSM.
+  SsaMethod method = SsaMethod::kExact;
+  double tolerance = 0.01;  ///< kAdaptive only: 0 < tolerance < 1
 
   /// Checks every field; throws InvalidArgument listing all problems, each with
   /// the field, the value and the allowed range.

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -28,6 +29,7 @@
 
 #include "sadr/common/particle_state.hpp"
 #include "sadr/common/rng.hpp"
+#include "sadr/ssa/adaptive_leap.hpp"
 #include "sadr/ssa/event_heap.hpp"
 #include "sadr/ssa/model.hpp"
 #include "sadr/ssa/rdme_state.hpp"
@@ -40,8 +42,10 @@ class NsmSolver {
   static constexpr std::uint64_t kStreamId = 0x55A0;
   /// Snapshot format version written by save().
   /// Version 2 stores the next event times by voxel; version 1 (heap entries
-  /// in heap order, the same information) is still read.
+  /// in heap order, the same information) is still read. Adaptive models write
+  /// kAdaptiveSnapshotVersion (version 2 plus the leap stream and its counter).
   static constexpr std::uint32_t kSnapshotVersion = 2;
+  static constexpr std::uint32_t kAdaptiveSnapshotVersion = 3;
 
   /// @param model validated here (throws InvalidArgument naming field and value)
   /// @param seed  realization seed; equal seeds give identical trajectories
@@ -69,11 +73,17 @@ class NsmSolver {
   void set_inputs(double t, std::span<const double> frozen);
   /// Runs every event with time <= t_end on the frozen graph, then sets the
   /// clock to exactly t_end (pending event times stay valid: memorylessness).
+  /// Adaptive models (Model::method) go through advance_adaptive() instead.
   /// @param t_end [T], >= time()
   void advance(double t_end);
 
-  [[nodiscard]] double time() const { return time_; }             ///< current time [T]
-  [[nodiscard]] std::uint64_t events() const { return events_; }  ///< events fired so far
+  [[nodiscard]] double time() const { return time_; }  ///< current time [T]
+  /// Events fired exactly (by the NSM) so far.
+  [[nodiscard]] std::uint64_t events() const { return events_; }
+  /// Molecules moved by the adaptive method's leaps so far (0 for the exact NSM).
+  [[nodiscard]] std::uint64_t leaped_molecules() const { return leap_ ? leap_->moved() : 0; }
+  /// Windows with at least one leaped pair so far (adaptive only; not in snapshots).
+  [[nodiscard]] std::uint64_t leap_windows() const { return leap_windows_; }
 
   /// Complete state (counts, clock, event count, event times, RNG, graph inputs) as a
   /// versioned binary blob (native little-endian; layout in docs/ssa-core.md).
@@ -97,6 +107,15 @@ class NsmSolver {
   /// All rates from the counts; each pending time rescaled from the cached (old)
   /// rate to the new one, a fresh draw where the old rate was 0; queue rebuilt.
   void rescale_queue();
+  /// advance() of the adaptive method (nsm_adaptive.cpp, adaptive_leap.hpp).
+  void advance_adaptive(double t_end);
+  /// rescale_queue() to the exact rates without the diffusion of the pairs in `leaped`
+  /// (nullptr: all pairs exact).
+  void rescale_masked(const std::uint8_t* leaped);
+  /// Fires the events with time <= t_w under `leaped` (nullptr: the exact channels), at
+  /// most `budget` of them. @return the time of the last event if the budget ended the
+  /// loop, else t_w.
+  double run_window(double t_w, const std::uint8_t* leaped, std::uint64_t budget);
 
   RdmeState state_;
   EventTree queue_;
@@ -105,6 +124,8 @@ class NsmSolver {
   double time_ = 0;
   std::uint64_t events_ = 0;
   std::vector<double> times_scratch_;  ///< rebuild/rescale: new times by voxel
+  std::optional<AdaptiveLeap> leap_;   ///< adaptive models only
+  std::uint64_t leap_windows_ = 0;
 };
 
 }  // namespace sadr::ssa

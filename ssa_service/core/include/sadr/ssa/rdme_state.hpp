@@ -135,6 +135,23 @@ class RdmeState {
   /// @return the other voxel whose counts changed (a jump target), or kNoVoxel.
   std::uint32_t fire(std::uint32_t i, double u);
 
+  // ---- the adaptive SSA's exact part (rdme_masked.cpp; the exact NSM never calls these) ----
+  // `leaped` has one byte per (species, voxel), species-major: a non-zero byte removes the
+  // diffusion of that pair from the exact channels (adaptive_leap.hpp leaps it instead).
+  /// total_rate(i) without the leaped pairs' diffusion; the same bits when none is leaped.
+  [[nodiscard]] double total_rate_masked(std::uint32_t i, const std::uint8_t* leaped) const;
+  /// fire() over the channels total_rate_masked() sums (same order and round-off fallback).
+  std::uint32_t fire_masked(std::uint32_t i, double u, const std::uint8_t* leaped);
+  /// X_si += delta (a leap's move; the caller keeps X_si >= 0 and never moves a held
+  /// reservoir count) and refreshes the rate laws that read it.
+  void add_count(int s, std::uint32_t i, std::int64_t delta) {
+    counts_[static_cast<std::size_t>(s) * n_ + i] += delta;
+    assert(counts_[static_cast<std::size_t>(s) * n_ + i] >= 0);
+    refresh_laws(s, i);
+  }
+  /// Diffusivity kappa_s [L^2/T].
+  [[nodiscard]] double kappa(int s) const { return kappa_[s]; }
+
   /// Species with kappa > 0 (the only ones with diffusion bookkeeping).
   [[nodiscard]] const std::vector<int>& diffusing_species() const { return diffusing_; }
   /// Whether species s is held fixed in voxel i (reservoir wall).
