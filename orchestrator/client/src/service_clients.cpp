@@ -181,6 +181,7 @@ SsaStep SsaClient::advance(std::uint64_t step_index, double t_end, Geometry geom
   SsaStep step;
   step.time = rep.time();
   step.events = rep.events();
+  step.leaped_molecules = rep.leaped_molecules();
   step.graph_seconds = rep.graph_seconds();
   step.nsm_seconds = rep.nsm_seconds();
   step.counts = counts_from_proto(rep.counts());

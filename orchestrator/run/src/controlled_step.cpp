@@ -60,8 +60,8 @@ std::vector<InputSample> SplittingLoop::end_samples(const CouplingStep& cs, std:
     if (t.counts) {
       out[k].time = cs.end;
       out[k].value = as_doubles(counts_of(counts, t.name));
-      // Each event changes the copy numbers of at most two particles by at most
-      // sqrt(jump2) each: sum_i Var(change_i) <= 2 jump2 E[events].
+      // Each event (or leaped molecule) changes the copy numbers of at most two particles
+      // by at most sqrt(jump2) each: sum_i Var(change_i) <= 2 jump2 E[events].
       out[k].noise = 2.0 * s_.jump2 * static_cast<double>(events);
     } else {
       out[k].time = t.rule == HoldRule::kMidpoint ? cs.begin + 0.5 * cs.length() : cs.end;
@@ -91,9 +91,10 @@ CouplingStep SplittingLoop::controlled_step(CouplingStep cs) {
       fluid_snap = fluid_->snapshot(step_);
       ssa_snap = ssa_->snapshot(step_);
     }
-    const std::uint64_t events0 = stats_.ssa_events;
+    // Leaped molecules move like diffusion events: both enter the noise bound.
+    const std::uint64_t moves0 = stats_.ssa_events + stats_.ssa_leaped_molecules;
     step(cs, false);
-    auto samples = end_samples(cs, stats_.ssa_events - events0);
+    auto samples = end_samples(cs, stats_.ssa_events + stats_.ssa_leaped_molecules - moves0);
     // The largest error over the inputs that have an estimate; none: nothing to estimate yet.
     std::optional<double> err;
     if (tracks_.empty()) err = 0.0;  // nothing crosses: no splitting error

@@ -70,6 +70,7 @@ nlohmann::json RunManifest::to_json() const {
                       {"frames", frames},
                       {"plan", plan}};
   if (!body_forces.empty()) j["body_forces"] = body_forces;
+  if (ssa_leaped_molecules > 0) j["ssa_leaped_molecules"] = ssa_leaped_molecules;
   if (!step_control.empty()) j["step_control"] = step_control;
   return j;
 }

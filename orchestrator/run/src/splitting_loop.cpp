@@ -311,6 +311,7 @@ void SplittingLoop::finish_ssa(const SsaJob& job) {
   stats_.timings_s["ssa_graph"] += job.result.graph_seconds;
   stats_.timings_s["ssa_nsm"] += job.result.nsm_seconds;
   stats_.ssa_events += job.result.events;
+  stats_.ssa_leaped_molecules += job.result.leaped_molecules;
   if (!s_.back_transfer.empty()) {
     counts_ = job.result.counts;
     has_counts_ = true;

@@ -59,6 +59,8 @@ struct RunManifest {
   void note_fluid_limit(double dt, const std::string& criterion, double time);
   /// SSA events (reactions + diffusion jumps) of this invocation, as fluid_substeps.
   std::uint64_t ssa_events = 0;
+  /// Molecules the adaptive SSA moved by leaps (ssa.method adaptive); left out of run.json when 0.
+  std::uint64_t ssa_leaped_molecules = 0;
   double time = 0.0;  ///< simulated time reached [time]
   /// Wall-clock seconds per part: "fluid" (fluid calls), "fluid_compute" (inside
   /// the service), "ssa" (SSA calls), "ssa_graph", "ssa_nsm" (inside the

@@ -114,6 +114,9 @@ class FluidService {
 struct SsaStep {
   double time = 0.0;  ///< == t_end [time]
   std::uint64_t events = 0;
+  /// Molecules moved by leaps (ssa.method adaptive; 0 for the exact method): each moves one
+  /// molecule between two voxels, as a diffusion event does.
+  std::uint64_t leaped_molecules = 0;
   double graph_seconds = 0.0;  ///< graph, rates and queue rebuild [s]
   double nsm_seconds = 0.0;    ///< event loop [s]
   SpeciesCounts counts;        ///< advance's return_counts, after the stage
