@@ -69,14 +69,26 @@ def reference(refs, np_, nb, t="inf"):
     return [float(r["uA"]) for r in rows]
 
 
-def run_ensemble(sadr, work, np_, nb, realizations, end, seed):
-    """Writes the Table 1 scene into `work` and runs `sadr run -r R` of it (CPU time by
-    os.wait4); returns the measurement and the folder of each realization."""
+def with_tolerance(scene_text, tolerance):
+    """The Table 1 scene with the adaptive SSA at `tolerance` (None: the exact NSM)."""
+    if tolerance is None:
+        return scene_text
+    old = "ssa: {convention: symmetric}"
+    assert old in scene_text
+    return scene_text.replace(old, "ssa: {convention: symmetric, method: adaptive, "
+                                   f"tolerance: {tolerance!r}}}")
+
+
+def run_ensemble(sadr, work, np_, nb, realizations, end, seed, tolerance=None):
+    """Writes the Table 1 scene into `work` (the adaptive SSA at `tolerance`, None: exact)
+    and runs `sadr run -r R` of it (CPU time by os.wait4); returns the measurement and the
+    folder of each realization."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from measure import run_measured
     scene = os.path.join(work, "scene.yaml")
     with open(scene, "w") as f:
-        f.write(SCENE.format(np=np_, dx=1.0 / (np_ - 1), nb=int(nb), end=end, seed=seed))
+        f.write(with_tolerance(SCENE.format(np=np_, dx=1.0 / (np_ - 1), nb=int(nb), end=end,
+                                            seed=seed), tolerance))
     out = os.path.join(work, "out")
     r = run_measured([sadr, "run", scene, "-r", str(realizations), "-q", "-o", out])
     if r["rc"]:
@@ -87,7 +99,7 @@ def run_ensemble(sadr, work, np_, nb, realizations, end, seed):
 
 
 def realization_errors(sadr, np_, nb, realizations, end=4.0, seed=2019, refs_path=None,
-                       subsets=(2, 3, 5, 10, 20, 30, 50, 100)):
+                       subsets=(2, 3, 5, 10, 20, 30, 50, 100), tolerance=None):
     """One `sadr run -r R` of the Table 1 scene; returns the paper metric of the
     ensemble mean over the first r realizations for each r in `subsets` (<= R),
     of one realization (r = 1), the CPU time of the whole run (sadr + services,
@@ -101,15 +113,17 @@ def realization_errors(sadr, np_, nb, realizations, end=4.0, seed=2019, refs_pat
     ref = reference(refs, np_, nb, "inf" if end >= 4.0 else end)
     work = tempfile.mkdtemp(prefix=f"sadr-table1-{np_}-")
     try:
-        r, run_dirs = run_ensemble(sadr, work, np_, nb, realizations, end, seed)
-        finals, events = [], []
+        r, run_dirs = run_ensemble(sadr, work, np_, nb, realizations, end, seed, tolerance)
+        finals, events, leaped = [], [], []
         for run_dir in run_dirs:
             frames = os.path.join(run_dir, "frames")
             rows = read_rows(os.path.join(frames, sorted(os.listdir(frames))[-1]))
             rows.sort(key=lambda row: int(row["id"]))
             finals.append([float(row["A"]) for row in rows])
             with open(os.path.join(run_dir, "run.json")) as f:
-                events.append(json.load(f)["ssa_events"])  # reactions + diffusion jumps
+                manifest = json.load(f)
+            events.append(manifest["ssa_events"])  # reactions + diffusion jumps
+            leaped.append(manifest.get("ssa_leaped_molecules", 0))  # adaptive SSA only
     finally:
         shutil.rmtree(work, ignore_errors=True)
     errors, noise = {}, {}
@@ -124,7 +138,8 @@ def realization_errors(sadr, np_, nb, realizations, end=4.0, seed=2019, refs_pat
         noise[n] = math.sqrt(sum(var[i] / n for i in range(1, np_ - 1))) / nb / (np_ - 1)
     return {"Np": np_, "N_b": nb, "realizations": realizations, "end": end, "errors": errors,
             "noise": noise, "cpu_s": r["cpu_s"], "wall_s": r["wall_s"],
-            "events_per_realization": sum(events) / len(events)}
+            "events_per_realization": sum(events) / len(events),
+            "leaped_per_realization": sum(leaped) / len(leaped), "tolerance": tolerance}
 
 
 # perf's shared objects and symbols, grouped into what a realization spends its CPU on.

@@ -349,11 +349,14 @@ class BoundaryFlux(_Part):
 
 @dataclass
 class Time(_Part):
-    """``time``: the coupling step, the end time and the splitting (lie, strang)."""
+    """``time``: the coupling step, the end time, the splitting (lie, strang) and the
+    tolerance of the error-controlled step (a number, or a map of relative, absolute and
+    max_step)."""
 
     coupling_step: Number | None = None
     end: Number | None = None
     splitting: str | None = None
+    tolerance: Number | dict | None = None
     extra: dict = field(default_factory=dict)
 
 
@@ -563,9 +566,12 @@ class Model:
         self.boundary_fluxes.append(f)
         return f
 
-    def set_time(self, coupling_step: Number, end: Number, splitting: str | None = None) -> Time:
-        """The coupling step tau, the end time, and the splitting (``lie``, ``strang``)."""
-        self.time = Time(coupling_step, end, splitting)
+    def set_time(self, coupling_step: Number, end: Number, splitting: str | None = None,
+                 tolerance: Number | dict | None = None) -> Time:
+        """The coupling step tau, the end time, the splitting (``lie``, ``strang``), and the
+        tolerance that makes tau the first step of an error-controlled one (a number: relative;
+        or ``{"relative": .., "absolute": .., "max_step": ..}``)."""
+        self.time = Time(coupling_step, end, splitting, tolerance)
         return self.time
 
     def set_output(self, *, every: Number | None = None, times: list[Number] | None = None,
