@@ -3,8 +3,8 @@
 // docs/method.md "Adaptive SSA"). [time, t_end] is cut into windows. At each window start the
 // abundant (species, voxel) pairs are classified from the counts:
 //  - some pair abundant: tau from the tolerance (AdaptiveLeap::window), the window ends at
-//    min(t + tau, t_end); the abundant pairs' diffusion is leaped at its start, then the NSM
-//    fires every other channel exactly over the window with those pairs masked out;
+//    min(t + tau, t_end); the NSM fires every other channel exactly over the window with
+//    those pairs masked out, and the abundant pairs' diffusion is leaped at its midpoint;
 //  - none abundant, or a leaping window would save fewer exact events than its O(N + E)
 //    bookkeeping costs: the exact NSM runs unmasked until t_end or until a budget of events
 //    (4 per (species, voxel), at least 4096) has fired, when the counts are classified again.
@@ -25,32 +25,6 @@ namespace sadr::ssa {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-}
-
-void NsmSolver::rescale_masked(const std::uint8_t* leaped) {
-  const std::size_t n = state_.voxel_count();
-  std::vector<double>& times = times_scratch_;
-  times.resize(n);
-  const double t = time_;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto v = static_cast<std::uint32_t>(i);
-    const double a_old = state_.cached_rate(v);
-    const double a_new = leaped ? state_.total_rate_masked(v, leaped) : state_.total_rate(v);
-    state_.cached_rate(v) = a_new;
-    const double tau = queue_.time_of(v);
-    double ti = kInf;
-    if (a_new > 0) {
-      if (a_old == a_new) {
-        ti = tau;
-      } else if (a_old > 0 && tau < kInf) {
-        ti = t + (a_old / a_new) * (tau - t);
-      } else {
-        ti = t + detail::exponential(rng_) / a_new;
-      }
-    }
-    times[i] = ti;
-  }
-  queue_.assign(times);
 }
 
 double NsmSolver::run_window(double t_w, const std::uint8_t* leaped, std::uint64_t budget) {
@@ -119,22 +93,22 @@ void NsmSolver::advance_adaptive(double t_end) {
       // the leaped molecules move, on average, when they would have (docs/method.md).
       const double t0 = time_;
       const double t_mid = t0 + 0.5 * (t_w - t0);
-      rescale_masked(leap_->mask());
+      rescale_queue(leap_->mask());
       masked = true;
       run_window(t_mid, leap_->mask(), kNoBudget);
       time_ = t_mid;
       leap_->leap(state_, t_w - t0);
       ++leap_windows_;
-      rescale_masked(leap_->mask());
+      rescale_queue(leap_->mask());
       run_window(t_w, leap_->mask(), kNoBudget);
       time_ = t_w;
     } else {
-      if (masked) rescale_masked(nullptr);
+      if (masked) rescale_queue(nullptr);
       masked = false;
       time_ = run_window(t_end, nullptr, budget);
     }
   }
-  if (masked) rescale_masked(nullptr);  // between advances the rates are the exact ones
+  if (masked) rescale_queue(nullptr);  // between advances the rates are the exact ones
   time_ = t_end;
 }
 

@@ -63,7 +63,7 @@ void NsmSolver::rebuild_queue() {
   queue_.assign(times);
 }
 
-void NsmSolver::rescale_queue() {
+void NsmSolver::rescale_queue(const std::uint8_t* leaped) {
   // Gibson & Bruck 2000: given the history, tau - t of a voxel that has not fired is
   // Exp(a_old); (a_old / a_new)(tau - t) is then Exp(a_new), so the pending draw is
   // reused. The cached rates are still those of the old graph (RdmeState::update_graph
@@ -76,7 +76,7 @@ void NsmSolver::rescale_queue() {
   for (std::size_t i = 0; i < n; ++i) {
     const auto v = static_cast<std::uint32_t>(i);
     const double a_old = state_.cached_rate(v);
-    const double a_new = state_.total_rate(v);
+    const double a_new = leaped ? state_.total_rate_masked(v, leaped) : state_.total_rate(v);
     state_.cached_rate(v) = a_new;
     const double tau = queue_.time_of(v);
     double ti = kInf;

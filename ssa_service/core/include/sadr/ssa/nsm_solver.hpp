@@ -105,13 +105,11 @@ class NsmSolver {
   /// All rates from the counts, fresh exponential times from time_, queue rebuilt.
   void rebuild_queue();
   /// All rates from the counts; each pending time rescaled from the cached (old)
-  /// rate to the new one, a fresh draw where the old rate was 0; queue rebuilt.
-  void rescale_queue();
+  /// rate to the new one, a fresh draw where the old rate was 0; queue rebuilt. With
+  /// `leaped` (the adaptive method), the rates leave out the diffusion of the pairs it marks.
+  void rescale_queue(const std::uint8_t* leaped = nullptr);
   /// advance() of the adaptive method (nsm_adaptive.cpp, adaptive_leap.hpp).
   void advance_adaptive(double t_end);
-  /// rescale_queue() to the exact rates without the diffusion of the pairs in `leaped`
-  /// (nullptr: all pairs exact).
-  void rescale_masked(const std::uint8_t* leaped);
   /// Fires the events with time <= t_w under `leaped` (nullptr: the exact channels), at
   /// most `budget` of them. @return the time of the last event if the budget ended the
   /// loop, else t_w.
