@@ -160,6 +160,26 @@ TEST(StepController, AcceptsAtTheSmallestStepAndCountsIt) {
   EXPECT_EQ(c.stats().over_tolerance, 1u);
 }
 
+TEST(StepController, AStepAtTheMinimumStretchedToLandIsStillAccepted) {
+  // Two minimum steps before the end, a step may be stretched by up to 1e-9 of itself to land
+  // on the end rather than leave a sliver (next_coupling_step): that step is still at the
+  // minimum. Rejected, it would be redone at the same length forever (a run at
+  // time.tolerance 1e-5 hung so).
+  StepTolerance tol;
+  tol.relative = 1e-5;
+  tol.max_step = 0.1;
+  StepController c(tol, 0.1, 1);
+  const double end = 0.8, m = c.min_step();
+  const double t = end - 2.0 * m * (1.0 + 5e-10);
+  const auto cs = next_controlled_step(t, m, end, {});
+  ASSERT_TRUE(cs);
+  ASSERT_GT(cs->length(), m * (1.0 + 1e-12));  // the stretch this test is about
+  EXPECT_TRUE(c.judge(cs->length(), 1e3));
+  EXPECT_EQ(c.stats().over_tolerance, 1u);
+  EXPECT_DOUBLE_EQ(c.tau(), m);
+  EXPECT_FALSE(c.judge(2.0 * m, 1e3));  // above the minimum: still rejected
+}
+
 TEST(StepController, StateRoundTripsExactly) {
   StepTolerance tol;
   tol.relative = 1e-3;

@@ -86,7 +86,10 @@ StepController::StepController(const StepTolerance& tol, double first_step, int 
 }
 
 bool StepController::judge(double h, std::optional<double> err) {
-  const bool at_min = h <= min_ * (1.0 + 1e-12);
+  // At the smallest step: a step asked at the minimum may come out longer by the stretch
+  // that lands it on an output or end time (up to 1e-9 of it, time_snap) and by rounding; a
+  // relative slack of 1e-6 keeps it from being rejected, and redone at the same length, forever.
+  const bool at_min = h <= min_ * (1.0 + 1e-6);
   if (err && *err > 1.0 && !at_min) {
     const double fac = kSafety * std::pow(1.0 / *err, 1.0 / order_);
     tau_ = std::max(min_, h * std::max(kFacMin, fac));
