@@ -17,7 +17,8 @@ the sound speed from 3x to 100x the flow speed; diffusivity and rate over 6
 decades, deterministic and stochastic; stochastic copy numbers from 0 to past
 the largest accepted; jittered, clumped and sparse particles; one long run
 (>= 1e6 sub-steps) with the drift of mass, momentum, kinetic temperature and
-molecule count.
+molecule count; the two tolerances (time.tolerance, ssa.tolerance) from 1e-1 to 1e-6, with
+the error each run achieves and its cost.
 The body-force limit 0.25 sqrt((h/2)/|a|) binds only when |a| > c0^2/(h/2),
 i.e. when the hydrostatic density variation |a| H / c0^2 exceeds H/(h/2) (>> 1):
 never in a weakly compressible scene, so it has no cell of its own.
@@ -348,19 +349,70 @@ def long_run_cell(bin_dir, work, steps):
     return [c]
 
 
+def tolerance_cells(bin_dir, work):
+    """The two tolerances from 1e-1 to 1e-6: the error-controlled coupling step
+    (time.tolerance, relative) on the splitting-order scene, whose exact answer is known,
+    and the adaptive SSA (ssa.tolerance) on drawert2019 Table 1 at N = 33 (10 realizations
+    against the PDE reference). Cost: CPU s, and steps or events, which load does not move."""
+    import annihilation_table1
+    import splitting_order
+    cells = []
+    n0, lam, end = 1_000_000, splitting_order.LAMBDA, splitting_order.T_END
+    beta = 1e-7 * 3125 / n0
+    exact = splitting_order.PARTICLES * n0 * (1 - math.exp(-lam * end)) / lam
+    base = splitting_order.SCENE.format(beta=beta, n0=n0, lam=lam, tau=0.1, end=end,
+                                        splitting="lie", seed=2024)
+    for tol in (1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6):
+        text = sub(base, "splitting: lie}", f"splitting: lie, tolerance: {tol!r}}}")
+        c = run_cell(bin_dir, work, f"time tolerance {tol:g}", text)
+        c["axis"] = ("time.tolerance (relative; splitting-order scene, Lie, first step 0.1, "
+                     "noise of one run 1.8e-4)")
+        c["value"] = f"{tol:g}"
+        c["figure"] = figure(c, "fluid")
+        manifest = pathlib.Path(c["dir"]) / "out" / "run.json"
+        if c["outcome"] == "runs" and c["rows"] and manifest.exists():
+            p = sum(float(r["mass"]) * float(r["vx"]) for r in c["rows"])
+            sc = json.loads(manifest.read_text()).get("step_control", {})
+            c["figure"] = (f"error {abs(p / beta - exact) / exact:.2e}; steps "
+                           f"{sc.get('accepted')} accepted, {sc.get('rejected')} rejected")
+        cells.append(c)
+    for tol in (None, 1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6):
+        name = "ssa exact" if tol is None else f"ssa tolerance {tol:g}"
+        c = {"cell": name, "axis": "ssa.tolerance (adaptive SSA; Table 1, N = 33, N_b = 1e3, "
+             "t = 1, 10 realizations)", "value": "exact" if tol is None else f"{tol:g}",
+             "message": "", "dir": str(work)}
+        try:
+            res = annihilation_table1.realization_errors(str(bin_dir / "sadr"), 33, 1000, 10,
+                                                         end=1.0, subsets=(), tolerance=tol)
+        except SystemExit as e:
+            c.update(outcome="caught", rc=1, cpu_s=0.0, message=str(e))
+            cells.append(c)
+            continue
+        c.update(outcome="runs", rc=0, cpu_s=res["cpu_s"] / 10,
+                 figure=(f"error of the mean {res['errors'][10]:.2e} (noise {res['noise'][10]:.2e}); "
+                         f"{res['events_per_realization']:.3g} events and "
+                         f"{res['leaped_per_realization']:.3g} leaped molecules per realization"))
+        if not all(math.isfinite(v) for v in res["errors"].values()):
+            c["outcome"] = "SILENT"
+        cells.append(c)
+    return cells
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--bin", default=str(ROOT / "build/release/bin"))
     ap.add_argument("--out", default=str(ROOT / "docs"))
     ap.add_argument("--long-steps", type=int, default=1_000_000)
-    ap.add_argument("--only", default="", help="comma list of: substep,c0,decades,counts,arrangement,long")
+    ap.add_argument("--only", default="",
+                    help="comma list of: substep,c0,decades,counts,arrangement,tolerance,long")
     a = ap.parse_args()
     bin_dir = pathlib.Path(a.bin).resolve()
     work = pathlib.Path(tempfile.mkdtemp(prefix="sadr-stability-"))
     only = set(filter(None, a.only.split(",")))
     groups = [("substep", substep_cells), ("c0", sound_speed_cells), ("decades", decade_cells),
               ("counts", copy_number_cells), ("arrangement", arrangement_cells),
+              ("tolerance", tolerance_cells),
               ("long", lambda b, w: long_run_cell(b, w, a.long_steps))]
     cells = []
     for gname, fn in groups:
@@ -370,14 +422,25 @@ def main():
         cells += fn(bin_dir, work)
     for c in cells:
         c.pop("rows", None)
+        c["commit"] = commit()
     out = pathlib.Path(a.out) / "validation"
     out.mkdir(parents=True, exist_ok=True)
-    meta = {"command": "bench/validation/stability_map.py " + " ".join(sys.argv[1:]),
-            "commit": commit(), "cells": cells, "work": str(work)}
+    command = "bench/validation/stability_map.py " + " ".join(sys.argv[1:])
+    if only and (out / "stability_map.json").exists():
+        # --only: the other groups' cells stay as the last run wrote them (each names its commit)
+        old = json.loads((out / "stability_map.json").read_text())
+        fresh = {c["cell"] for c in cells}
+        kept = [dict(c, commit=c.get("commit", old["commit"])) for c in old["cells"]
+                if c["cell"] not in fresh]
+        cells = kept + cells
+        command = f"{old['command']}, then {command}"
+    meta = {"command": command, "commit": commit(), "cells": cells, "work": str(work)}
     (out / "stability_map.json").write_text(json.dumps(meta, indent=1) + "\n")
     with open(out / "stability_map.md", "w") as f:
         f.write(f"# Stability map\n\nGenerated by `{meta['command']}` at `{meta['commit']}` "
-                "(cells and their meaning: the script's docstring). CPU = user + sys of the run.\n\n")
+                "(cells and their meaning: the script's docstring; a run with --only keeps the "
+                "other cells, and the JSON names each cell's commit). CPU = user + sys of the "
+                "run.\n\n")
         f.write("| axis | value | outcome | figure / message | CPU s |\n|---|---|---|---|---|\n")
         for c in cells:
             text = c["figure"] if c["outcome"].startswith("runs") or c["outcome"] == "SILENT" \
